@@ -1,0 +1,216 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+------------------------------------------------------------------------- */
+
+#include "pair_saltdem.h"
+
+#include "comm.h"
+#include "error.h"
+#include "fix_dummy.h"
+#include "memory.h"
+#include "modify.h"
+#include "neighbor.h"
+
+#include <cfloat>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+/* ---------------------------------------------------------------------- */
+
+PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *history_id) :
+    Pair(lmp), hist_id(history_id), fix_dummy(nullptr), fix_history(nullptr),
+    transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr), dtfactor(0.2)
+{
+  single_enable = 0;
+  no_virial_fdotr_compute = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+  finitecutflag = 1;
+  history = (history_id != nullptr) ? 1 : 0;
+  size_history = 0;
+
+  // a placeholder keeps the history fix at this position in the fix list
+  if (history)
+    fix_dummy = dynamic_cast<FixDummy *>(modify->add_fix(
+        fmt::format("{}_DUMMY{} all DUMMY", hist_id, instance_me)));
+}
+
+PairSaltdem::~PairSaltdem()
+{
+  if (copymode) return;
+  if (history) {
+    if (fix_history)
+      modify->delete_fix(fmt::format("{}{}", hist_id, instance_me));
+    else
+      modify->delete_fix(fmt::format("{}_DUMMY{}", hist_id, instance_me));
+  }
+  delete[] transfer_factor;
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(extra);
+    delete[] onerad;
+    delete[] maxrad;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSaltdem::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) setflag[i][j] = 0;
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  memory->create(extra, n + 1, n + 1, "pair:extra");
+  onerad = new double[n + 1];
+  maxrad = new double[n + 1];
+  allocate_params(n);
+}
+
+/* parse the I,J type ranges of pair_coeff, allocating on first use */
+
+void PairSaltdem::check_types(int narg, char **arg, int &ilo, int &ihi, int &jlo, int &jhi)
+{
+  if (narg < 2) utils::missing_cmd_args(FLERR, "pair_coeff", error);
+  if (!allocated) allocate();
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSaltdem::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
+    error->all(FLERR,
+               "Pair style {} requires per-atom radius, rmass and omega: use 'atom_style sphere'",
+               force->pair_style);
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR,
+               "Pair style {} needs the velocities of ghost atoms: add 'comm_modify vel yes'",
+               force->pair_style);
+
+  if (history)
+    neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_HISTORY);
+  else
+    neighbor->add_request(this, NeighConst::REQ_SIZE);
+
+  if (history && !fix_history) {
+    auto cmd = fmt::format("{}{} all NEIGH_HISTORY {}", hist_id, instance_me, size_history);
+    fix_history = dynamic_cast<FixNeighHistory *>(
+        modify->replace_fix(fmt::format("{}_DUMMY{}", hist_id, instance_me), cmd, 1));
+    fix_history->pair = this;
+    fix_dummy = nullptr;
+  }
+
+  // largest radius per type sets the ghost cutoff
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++) onerad[i] = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    onerad[atom->type[i]] = MAX(onerad[atom->type[i]], atom->radius[i]);
+  MPI_Allreduce(&onerad[1], &maxrad[1], n, MPI_DOUBLE, MPI_MAX, world);
+
+  // the time step must be stable for the law and the lightest particles
+  std::vector<double> mmin(n + 1);
+  min_inertial_mass(mmin.data());
+  std::string why;
+  const double dtmax = stable_dt(mmin.data(), why);
+  if (dtmax > 0.0 && update->dt > dtmax)
+    error->all(FLERR,
+               "Pair style {}: timestep {:.6g} exceeds the stable limit {:.6g} set by {}. "
+               "Use 'timestep {:.3g}' or smaller, or change the parameter named",
+               force->pair_style, update->dt, dtmax, why, 0.99 * dtmax);
+}
+
+/* smallest mass per type that the integrator sees: rmass times the inertia
+   factor of a SaltDEM integrator (fix saltdem/nve) acting on the atom */
+
+void PairSaltdem::min_inertial_mass(double *mmin)
+{
+  const int n = atom->ntypes;
+  std::vector<double> local(n + 1, DBL_MAX);
+  auto fixes = modify->get_fix_by_style("^saltdem/nve");
+  int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double scale = 1.0;
+    for (auto &ifix : fixes) {
+      int dim;
+      auto s = (double *) ifix->extract("inertia", dim);
+      if (s && (mask[i] & ifix->groupbit)) scale = *s;
+    }
+    const int t = atom->type[i];
+    local[t] = MIN(local[t], scale * atom->rmass[i]);
+  }
+  MPI_Allreduce(&local[1], &mmin[1], n, MPI_DOUBLE, MPI_MIN, world);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double PairSaltdem::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) {
+    if (!setflag[i][i] || !setflag[j][j])
+      error->all(FLERR,
+                 "Pair style {}: coefficients for types {} {} are not set, and cannot be mixed "
+                 "because type {} {} has none. Add a pair_coeff line for them",
+                 force->pair_style, i, j, setflag[i][i] ? j : i, setflag[i][i] ? j : i);
+    mix(i, j);
+  }
+  memcpy(pair_params(j, i), pair_params(i, j), params_size());
+  extra[i][j] = extra[j][i] = range(i, j);
+
+  // a pair is in the neighbour list when r < ri + rj + skin: the range
+  // beyond contact must fit inside the skin
+  if (extra[i][j] >= neighbor->skin)
+    error->all(FLERR,
+               "Pair style {}: interaction range {:.6g} beyond contact for types {} {} is not "
+               "smaller than the neighbor skin {:.6g}; use e.g. 'neighbor {:.3g} bin'",
+               force->pair_style, extra[i][j], i, j, neighbor->skin, 4.0 * extra[i][j]);
+
+  return maxrad[i] + maxrad[j] + extra[i][j];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSaltdem::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (setflag[i][j]) fwrite(pair_params(i, j), params_size(), 1, fp);
+    }
+}
+
+void PairSaltdem::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (setflag[i][j]) {
+        if (me == 0) utils::sfread(FLERR, pair_params(i, j), params_size(), 1, fp, nullptr, error);
+        MPI_Bcast(pair_params(i, j), (int) params_size(), MPI_BYTE, 0, world);
+      }
+    }
+}
+
+/* history of (i,j) seen from j: antisymmetric by default, but the rolling
+   displacement is symmetric (see the derived style's transfer_factor) */
+
+void PairSaltdem::transfer_history(double *source, double *target, int, int)
+{
+  for (int k = 0; k < size_history; k++) target[k] = transfer_factor[k] * source[k];
+}
+
+double PairSaltdem::memory_usage()
+{
+  const int n = atom->ntypes + 1;
+  return (double) n * n * (2 * sizeof(double) + sizeof(int) + params_size());
+}

@@ -1,0 +1,237 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   pair saltdem/cohesive: the frictional-cohesive cover.  The law itself is
+   SaltDEM::cohesive_force (saltdem_contact.h); this file parses and checks
+   its coefficients, mixes cross types and sets the stable time step.
+------------------------------------------------------------------------- */
+
+#include "pair_saltdem_cohesive.h"
+
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+
+#include <cfloat>
+
+using namespace LAMMPS_NS;
+
+/* ---------------------------------------------------------------------- */
+
+PairSaltdemCohesive::PairSaltdemCohesive(LAMMPS *lmp) :
+    PairSaltdem(lmp, "SALTDEM_COHESIVE_HISTORY"), params(nullptr), rolling(false), dt(0.0)
+{
+  size_history = 3;
+}
+
+PairSaltdemCohesive::~PairSaltdemCohesive()
+{
+  if (copymode) return;
+  memory->destroy(params);
+}
+
+void PairSaltdemCohesive::allocate_params(int n)
+{
+  memory->create(params, n + 1, n + 1, "pair:params");
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSaltdemCohesive::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  auto tally = [this](int i, int j, double e, double fx, double fy, double fz, double dx,
+                      double dy, double dz) {
+    ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
+  };
+  if (evflag)
+    loop<PairSaltdemCohesive, 1>(this, 0, list->inum, atom->f, atom->torque, tally);
+  else
+    loop<PairSaltdemCohesive, 0>(this, 0, list->inum, atom->f, atom->torque, tally);
+}
+
+/* pair_style saltdem/cohesive [dtfactor C] */
+
+void PairSaltdemCohesive::settings(int narg, char **arg)
+{
+  int iarg = 0;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "dtfactor") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style saltdem/cohesive dtfactor", error);
+      dtfactor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (dtfactor <= 0.0 || dtfactor > 0.8)
+        error->all(FLERR, "Pair style saltdem/cohesive: dtfactor {} must be in (0, 0.8]", dtfactor);
+      iarg += 2;
+    } else
+      error->all(FLERR, "Pair style saltdem/cohesive: unknown keyword '{}' (expected: dtfactor)",
+                 arg[iarg]);
+  }
+}
+
+/* pair_coeff I J kn kt mu cohesion tensile range [damp zn zt] [rolling kr mur] */
+
+void PairSaltdemCohesive::coeff(int narg, char **arg)
+{
+  const char *usage = "pair_coeff I J kn kt mu cohesion tensile range [damp zeta_n zeta_t] "
+                      "[rolling kr mu_r]";
+  if (narg < 8)
+    error->all(FLERR, "Pair style saltdem/cohesive: pair_coeff needs 8 or more arguments, got {}: {}",
+               narg, usage);
+  int ilo, ihi, jlo, jhi;
+  check_types(narg, arg, ilo, ihi, jlo, jhi);
+
+  SaltDEM::CohesiveParams p{};
+  p.kn = utils::numeric(FLERR, arg[2], false, lmp);
+  p.kt = utils::numeric(FLERR, arg[3], false, lmp);
+  p.mu = utils::numeric(FLERR, arg[4], false, lmp);
+  p.coh = utils::numeric(FLERR, arg[5], false, lmp);
+  p.tens = utils::numeric(FLERR, arg[6], false, lmp);
+  p.range = utils::numeric(FLERR, arg[7], false, lmp);
+
+  auto positive = [&](double v, const char *name, bool strict) {
+    if (v < 0.0 || (strict && v == 0.0))
+      error->all(FLERR, "Pair style saltdem/cohesive: {} = {} must be {}", name, v,
+                 strict ? "> 0" : ">= 0");
+  };
+  positive(p.kn, "kn", true);
+  positive(p.kt, "kt", false);
+  positive(p.mu, "mu", false);
+  positive(p.coh, "cohesion", false);
+  positive(p.tens, "tensile", false);
+  positive(p.range, "range", false);
+
+  int iarg = 8;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "damp") == 0) {
+      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_coeff saltdem/cohesive damp", error);
+      p.zeta_n = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      p.zeta_t = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      if (p.zeta_n < 0.0 || p.zeta_n >= 1.0 || p.zeta_t < 0.0 || p.zeta_t >= 1.0)
+        error->all(FLERR, "Pair style saltdem/cohesive: damping ratios {} {} must be in [0, 1)",
+                   p.zeta_n, p.zeta_t);
+      iarg += 3;
+    } else if (strcmp(arg[iarg], "rolling") == 0) {
+      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_coeff saltdem/cohesive rolling", error);
+      p.kr = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      p.mur = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      positive(p.kr, "rolling kr", false);
+      positive(p.mur, "rolling mu_r", false);
+      iarg += 3;
+    } else
+      error->all(FLERR, "Pair style saltdem/cohesive: unknown pair_coeff keyword '{}'; usage: {}",
+                 arg[iarg], usage);
+  }
+  if (p.tens > 0.0 && p.range <= p.tens / p.kn)
+    error->all(FLERR,
+               "Pair style saltdem/cohesive: range {} must exceed the elastic gap tensile/kn = {} "
+               "at which the attraction peaks",
+               p.range, p.tens / p.kn);
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      params[i][j] = p;
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients" + utils::errorurl(21));
+}
+
+/* cross types: springs in series, strengths by geometric mean (an interface
+   with a cohesionless or frictionless side has none), the rest averaged */
+
+void PairSaltdemCohesive::mix(int i, int j)
+{
+  const auto &a = params[i][i];
+  const auto &b = params[j][j];
+  auto series = [](double x, double y) { return (x + y > 0.0) ? 2.0 * x * y / (x + y) : 0.0; };
+  SaltDEM::CohesiveParams &p = params[i][j];
+  p.kn = series(a.kn, b.kn);
+  p.kt = series(a.kt, b.kt);
+  p.kr = series(a.kr, b.kr);
+  p.mu = sqrt(a.mu * b.mu);
+  p.coh = sqrt(a.coh * b.coh);
+  p.tens = sqrt(a.tens * b.tens);
+  p.mur = sqrt(a.mur * b.mur);
+  p.range = 0.5 * (a.range + b.range);
+  p.zeta_n = 0.5 * (a.zeta_n + b.zeta_n);
+  p.zeta_t = 0.5 * (a.zeta_t + b.zeta_t);
+  if (p.tens > 0.0 && p.range <= p.tens / p.kn) p.range = 1.01 * p.tens / p.kn;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSaltdemCohesive::init_style()
+{
+  // the rolling history needs 3 more values; fixed once the history exists
+  bool want = false;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (setflag[i][j] && params[i][j].kr > 0.0) want = true;
+  if (fix_history && want != rolling)
+    error->all(FLERR, "Pair style saltdem/cohesive: rolling resistance was {} after the first run; "
+               "set it before the first run (or re-issue pair_style)",
+               want ? "switched on" : "switched off");
+  rolling = want;
+  size_history = rolling ? 6 : 3;
+  delete[] transfer_factor;
+  transfer_factor = new double[size_history];
+  // tangential displacement flips sign seen from j, rolling displacement does not
+  for (int k = 0; k < size_history; k++) transfer_factor[k] = (k < 3) ? -1.0 : 1.0;
+  nondefault_history_transfer = rolling ? 1 : 0;
+
+  dt = update->dt;
+  PairSaltdem::init_style();
+}
+
+/* The stiffest oscillator per type pair: the normal spring, or the
+   tangential spring that also turns the disc (1/m + l^2/I = 3/m for a disc,
+   3.5/m for a sphere).  Stable dt = dtfactor * sqrt(m_min / k). */
+
+double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
+{
+  const double rot = (domain->dimension == 2) ? 3.0 : 3.5;
+  double best = DBL_MAX;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (!setflag[i][j] && !(setflag[i][i] && setflag[j][j])) continue;
+      if (mmin[i] == DBL_MAX || mmin[j] == DBL_MAX) continue;
+      const auto &p = setflag[i][j] ? params[i][j] : params[i][i];
+      const double m = MIN(mmin[i], mmin[j]);
+      const bool tang = rot * p.kt > p.kn;
+      const double k = tang ? rot * p.kt : p.kn;
+      const double lim = dtfactor * sqrt(m / k);
+      if (lim < best) {
+        best = lim;
+        why = fmt::format("{} = {:.6g} of types {} {} with the lightest mass {:.6g} "
+                          "(dt < {} * sqrt(m/{}))",
+                          tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, dtfactor,
+                          tang ? fmt::format("({}*kt)", rot) : "kn");
+      }
+    }
+  return best == DBL_MAX ? 0.0 : best;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSaltdemCohesive::write_restart_settings(FILE *fp)
+{
+  fwrite(&dtfactor, sizeof(double), 1, fp);
+}
+
+void PairSaltdemCohesive::read_restart_settings(FILE *fp)
+{
+  if (comm->me == 0) utils::sfread(FLERR, &dtfactor, sizeof(double), 1, fp, nullptr, error);
+  MPI_Bcast(&dtfactor, 1, MPI_DOUBLE, 0, world);
+}
+
+/* kn etc. for fixes and computes: per type pair arrays are not exposed;
+   the scalar "dtfactor" is */
+
+void *PairSaltdemCohesive::extract(const char *str, int &dim)
+{
+  dim = 0;
+  if (strcmp(str, "dtfactor") == 0) return (void *) &dtfactor;
+  return nullptr;
+}

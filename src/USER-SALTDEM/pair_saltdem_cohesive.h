@@ -1,0 +1,54 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(saltdem/cohesive,PairSaltdemCohesive);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_SALTDEM_COHESIVE_H
+#define LMP_PAIR_SALTDEM_COHESIVE_H
+
+#include "pair_saltdem.h"
+
+namespace LAMMPS_NS {
+
+class PairSaltdemCohesive : public PairSaltdem {
+ public:
+  PairSaltdemCohesive(class LAMMPS *);
+  ~PairSaltdemCohesive() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  void *extract(const char *, int &) override;
+
+  // the force law, inlined into the shared pair loop
+  bool law(int itype, int jtype, const SaltDEM::Contact &c, double *hist, bool advance,
+           double *f, double *ti, double *tj, double &evdwl) const
+  {
+    return SaltDEM::cohesive_force(params[itype][jtype], c, hist, rolling, dt, advance, f, ti, tj,
+                                   evdwl);
+  }
+
+ protected:
+  SaltDEM::CohesiveParams **params;
+  bool rolling;    // any pair with rolling resistance: 3 more history values
+  double dt;
+
+  void allocate_params(int) override;
+  void *pair_params(int i, int j) override { return &params[i][j]; }
+  size_t params_size() const override { return sizeof(SaltDEM::CohesiveParams); }
+  void mix(int, int) override;
+  double range(int i, int j) const override { return params[i][j].tens > 0.0 ? params[i][j].range : 0.0; }
+  double stable_dt(const double *, std::string &) override;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,223 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   The contact math of the package, written once.  Every pair style, its
+   OpenMP variant and any wall interaction call these inline functions:
+   the geometry and kinematics of a disc/sphere contact (Contact), the
+   frictional-cohesive cover law (cohesive_force) and the viscous salt law
+   (viscous_force).  Nothing here depends on LAMMPS classes.
+
+   Sign conventions: n points from j to i; the force returned acts on i
+   (j receives its negative); torques are returned separately for i and j
+   because the lever arms differ.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_SALTDEM_CONTACT_H
+#define LMP_SALTDEM_CONTACT_H
+
+#include <cmath>
+
+namespace SaltDEM {
+
+/* Geometry and kinematics of one pair: computed once, read by the laws. */
+struct Contact {
+  double n[3];        // unit normal, from j to i
+  double r;           // centre distance
+  double delta;       // overlap r_i + r_j - r (> 0 when touching, < 0 is a gap)
+  double li, lj;      // lever arms from the centres to the contact point
+  double vn;          // normal relative velocity (v_i - v_j).n, < 0 approaching
+  double vt[3];       // tangential relative velocity at the contact point
+  double wr[3];       // relative angular velocity w_i - w_j
+  double meff;        // reduced mass m_i m_j / (m_i + m_j)
+  double reff;        // reduced radius r_i r_j / (r_i + r_j)
+};
+
+/* Fill c for discs/spheres i and j.  r > 0 is required (callers skip r == 0). */
+inline void contact_kinematics(const double *xi, const double *xj, const double *vi,
+                               const double *vj, const double *wi, const double *wj, double radi,
+                               double radj, double mi, double mj, double r, Contact &c)
+{
+  const double rinv = 1.0 / r;
+  c.n[0] = (xi[0] - xj[0]) * rinv;
+  c.n[1] = (xi[1] - xj[1]) * rinv;
+  c.n[2] = (xi[2] - xj[2]) * rinv;
+  c.r = r;
+  c.delta = radi + radj - r;
+  // the contact point sits at the middle of the overlap (or gap)
+  c.li = radi - 0.5 * c.delta;
+  c.lj = radj - 0.5 * c.delta;
+
+  const double vr0 = vi[0] - vj[0], vr1 = vi[1] - vj[1], vr2 = vi[2] - vj[2];
+  c.vn = vr0 * c.n[0] + vr1 * c.n[1] + vr2 * c.n[2];
+  // rotation adds -(li w_i + lj w_j) x n at the contact point
+  const double w0 = c.li * wi[0] + c.lj * wj[0];
+  const double w1 = c.li * wi[1] + c.lj * wj[1];
+  const double w2 = c.li * wi[2] + c.lj * wj[2];
+  c.vt[0] = vr0 - c.vn * c.n[0] - (w1 * c.n[2] - w2 * c.n[1]);
+  c.vt[1] = vr1 - c.vn * c.n[1] - (w2 * c.n[0] - w0 * c.n[2]);
+  c.vt[2] = vr2 - c.vn * c.n[2] - (w0 * c.n[1] - w1 * c.n[0]);
+  c.wr[0] = wi[0] - wj[0];
+  c.wr[1] = wi[1] - wj[1];
+  c.wr[2] = wi[2] - wj[2];
+
+  c.meff = (mi > 0.0 && mj > 0.0) ? mi * mj / (mi + mj) : (mi > 0.0 ? mi : mj);
+  c.reff = radi * radj / (radi + radj);
+}
+
+/* Keep a history vector in the tangent plane as the contact rotates, with
+   its length unchanged (frame-indifferent spring). */
+inline void rotate_into_plane(double *h, const double *n)
+{
+  const double hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
+  if (hn == 0.0) return;
+  const double before = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+  h[0] -= hn * n[0];
+  h[1] -= hn * n[1];
+  h[2] -= hn * n[2];
+  const double after = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+  if (after > 0.0) {
+    const double s = std::sqrt(before / after);
+    h[0] *= s;
+    h[1] *= s;
+    h[2] *= s;
+  }
+}
+
+/* Torque contributions of a tangential force ft applied at the contact:
+   ti = -li (n x ft), tj = -lj (n x ft). */
+inline void contact_torques(const Contact &c, const double *ft, double *ti, double *tj)
+{
+  const double nx0 = c.n[1] * ft[2] - c.n[2] * ft[1];
+  const double nx1 = c.n[2] * ft[0] - c.n[0] * ft[2];
+  const double nx2 = c.n[0] * ft[1] - c.n[1] * ft[0];
+  ti[0] = -c.li * nx0;
+  ti[1] = -c.li * nx1;
+  ti[2] = -c.li * nx2;
+  tj[0] = -c.lj * nx0;
+  tj[1] = -c.lj * nx1;
+  tj[2] = -c.lj * nx2;
+}
+
+/* ----------------------------------------------------------------------
+   Frictional-cohesive cover law (pair saltdem/cohesive)
+------------------------------------------------------------------------- */
+
+struct CohesiveParams {
+  double kn;        // normal stiffness (force/length)
+  double kt;        // tangential stiffness (force/length)
+  double mu;        // contact friction coefficient
+  double coh;       // contact cohesion (force)
+  double tens;      // tensile strength (force): peak of the attraction
+  double range;     // gap at which the attraction has softened to zero (length)
+  double zeta_n;    // normal damping ratio (fraction of critical)
+  double zeta_t;    // tangential damping ratio
+  double kr;        // rolling stiffness (force/length on the rolling displacement); 0: none
+  double mur;       // rolling friction coefficient: |fr| <= mur * Fn
+};
+
+/* Elastic + cohesive normal force (positive = repulsive) at overlap delta.
+   Touching: kn*delta.  In a gap g = -delta the attraction rises elastically
+   (slope kn) to the tensile strength at g_p = tens/kn, then softens linearly
+   to zero at g = range.  It is a function of the gap only: reversible, no
+   bond, re-forms on every new contact. */
+inline double cohesive_normal(const CohesiveParams &p, double delta)
+{
+  if (delta >= 0.0) return p.kn * delta;
+  const double g = -delta;
+  if (g >= p.range) return 0.0;
+  const double gp = p.tens / p.kn;
+  if (g <= gp) return -p.kn * g;
+  return -p.tens * (p.range - g) / (p.range - gp);
+}
+
+/* Potential energy of cohesive_normal, zero at and beyond the range. */
+inline double cohesive_normal_energy(const CohesiveParams &p, double delta)
+{
+  const double gp = p.tens / p.kn;
+  const double e_range = 0.5 * p.tens * p.range;    // work to pull apart from touching
+  if (delta >= 0.0) return 0.5 * p.kn * delta * delta - e_range;
+  const double g = -delta;
+  if (g >= p.range) return 0.0;
+  if (g <= gp) return 0.5 * p.kn * g * g - e_range;
+  const double a = p.range - g;
+  return -0.5 * p.tens * a * a / (p.range - gp);
+}
+
+/* The cover law.  hist: 3 tangential (+3 rolling) values, kept while the
+   discs touch.  f: force on i.  ti, tj: torques on i and j.  advance: move
+   the history on (false during setup, as in LAMMPS's granular styles).
+   evdwl: elastic energy stored in the contact.  Returns true while the
+   discs touch (delta > 0); in the cohesive gap only the normal force acts. */
+inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hist, bool rolling,
+                           double dt, bool advance, double *f, double *ti, double *tj,
+                           double &evdwl)
+{
+  // normal: elastic/cohesive + viscous damping (critical ratio zeta_n)
+  const double fn_el = cohesive_normal(p, c.delta);
+  const double fn = fn_el - 2.0 * p.zeta_n * std::sqrt(c.meff * p.kn) * c.vn;
+  evdwl = cohesive_normal_energy(p, c.delta);
+  for (int k = 0; k < 3; k++) f[k] = fn * c.n[k];
+  ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
+  if (c.delta <= 0.0) return false;
+
+  // tangential spring with the Mohr-Coulomb limit c + mu Fn (Fn elastic,
+  // compressive here); sliding caps the force and resets the spring to it
+  double *xi = hist;
+  rotate_into_plane(xi, c.n);
+  const double gt = 2.0 * p.zeta_t * std::sqrt(c.meff * p.kt);
+  double ft[3];
+  for (int k = 0; k < 3; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
+  const double fmax = p.coh + p.mu * fn_el;
+  const double ftmag = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+  if (ftmag > fmax) {
+    const double s = fmax / ftmag;
+    for (int k = 0; k < 3; k++) {
+      ft[k] *= s;
+      if (p.kt > 0.0) xi[k] = -(ft[k] + gt * c.vt[k]) / p.kt;
+    }
+  }
+  evdwl += 0.5 * p.kt * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+  if (advance)
+    for (int k = 0; k < 3; k++) xi[k] += c.vt[k] * dt;
+  for (int k = 0; k < 3; k++) f[k] += ft[k];
+  contact_torques(c, ft, ti, tj);
+
+  // rolling resistance: elastic-plastic spring (stiffness kr) on the rolling
+  // displacement, rate reff (w_i - w_j) x n (Wang et al. 2015), limited by
+  // mur * Fn; the resisting torque is reff n x fr
+  if (rolling && p.kr > 0.0) {
+    double *psi = hist + 3;
+    rotate_into_plane(psi, c.n);
+    const double vr[3] = {c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]),
+                          c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]),
+                          c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0])};
+    double fr[3];
+    for (int k = 0; k < 3; k++) fr[k] = -p.kr * psi[k];
+    const double frmax = p.mur * fn_el;
+    const double frmag = std::sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]);
+    if (frmag > frmax) {
+      const double s = frmax / frmag;
+      for (int k = 0; k < 3; k++) {
+        fr[k] *= s;
+        psi[k] = -fr[k] / p.kr;
+      }
+    }
+    evdwl += 0.5 * p.kr * (psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]);
+    if (advance)
+      for (int k = 0; k < 3; k++) psi[k] += vr[k] * dt;
+    const double tr0 = c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]);
+    const double tr1 = c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]);
+    const double tr2 = c.reff * (c.n[0] * fr[1] - c.n[1] * fr[0]);
+    ti[0] += tr0;
+    ti[1] += tr1;
+    ti[2] += tr2;
+    tj[0] -= tr0;
+    tj[1] -= tr1;
+    tj[2] -= tr2;
+  }
+  return true;
+}
+
+}    // namespace SaltDEM
+
+#endif

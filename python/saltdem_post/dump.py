@@ -17,7 +17,7 @@ import re
 import warnings
 from dataclasses import dataclass, field
 from itertools import islice
-from typing import Callable, Dict, Iterable, Iterator, List, Optional, Sequence
+from typing import Dict, Iterable, Iterator, List, Optional, Sequence
 
 import numpy as np
 
@@ -64,19 +64,17 @@ class Box:
     def header_lines(self) -> List[str]:
         """The ``ITEM: BOX BOUNDS`` block as LAMMPS would write it."""
         flags = " ".join(self.boundary)
+
+        def row(*values):                   # repr: shortest exact round-trip
+            return " ".join(repr(float(v)) for v in values)
         if not self.triclinic:
-            return [f"ITEM: BOX BOUNDS {flags}"] + [
-                f"{lo:.16g} {hi:.16g}" for lo, hi in zip(self.lo, self.hi)]
+            return [f"ITEM: BOX BOUNDS {flags}"] + [row(lo, hi) for lo, hi in zip(self.lo, self.hi)]
         xy, xz, yz = self.tilt
         # LAMMPS writes the bounding box of the tilted cell, not lo/hi.
-        xlo_b = self.lo[0] + min(0.0, xy, xz, xy + xz)
-        xhi_b = self.hi[0] + max(0.0, xy, xz, xy + xz)
-        ylo_b = self.lo[1] + min(0.0, yz)
-        yhi_b = self.hi[1] + max(0.0, yz)
         return [f"ITEM: BOX BOUNDS xy xz yz {flags}",
-                f"{xlo_b:.16g} {xhi_b:.16g} {xy:.16g}",
-                f"{ylo_b:.16g} {yhi_b:.16g} {xz:.16g}",
-                f"{self.lo[2]:.16g} {self.hi[2]:.16g} {yz:.16g}"]
+                row(self.lo[0] + min(0.0, xy, xz, xy + xz), self.hi[0] + max(0.0, xy, xz, xy + xz), xy),
+                row(self.lo[1] + min(0.0, yz), self.hi[1] + max(0.0, yz), xz),
+                row(self.lo[2], self.hi[2], yz)]
 
     def to_dict(self) -> dict:
         return {"lo": self.lo.tolist(), "hi": self.hi.tolist(),
@@ -240,6 +238,8 @@ _BOUNDARY = re.compile(rb"^[pfsm]{2}$")
 
 def _parse_box(item: bytes, fh, path: str) -> Box:
     tokens = item.split()[2:]                      # after "BOX BOUNDS"
+    if b"abc" in tokens:
+        raise DumpFormatError(f"{path}: general triclinic boxes ('abc origin') are not supported")
     triclinic = b"xy" in tokens
     flags = tuple(t.decode() for t in tokens if _BOUNDARY.match(t)) or ("pp", "pp", "pp")
     rows = []

@@ -113,8 +113,10 @@ def salt_thickness(frame: Frame, materials: Optional[MaterialMap] = None, bin_wi
     but no salt have thickness 0; columns with no cover/salt at all are
     outside the model (NaN).
 
-    Defaults: ``bin_width`` two median disc diameters, ``gap`` half a salt
-    disc diameter, ``weld_thickness`` one salt disc diameter.
+    Defaults: ``bin_width`` two median disc diameters (adjusted so that a
+    whole number of columns spans ``x_range``, by default the extent of the
+    cover and salt), ``gap`` half a salt disc diameter, ``weld_thickness`` one
+    salt disc diameter.
     """
     materials = materials or MaterialMap()
     types = frame["type"]
@@ -130,7 +132,9 @@ def salt_thickness(frame: Frame, materials: Optional[MaterialMap] = None, bin_wi
     if x_range is None:
         x_range = (float((x - r)[model].min()), float((x + r)[model].max()))
     x0, x1 = x_range
-    nbins = max(int(np.ceil((x1 - x0) / bin_width)), 1)
+    # Whole number of equal columns, so the edge columns are not slivers.
+    nbins = max(int(round((x1 - x0) / bin_width)), 1)
+    bin_width = (x1 - x0) / nbins
     centres = x0 + (np.arange(nbins) + 0.5) * bin_width
 
     def column(mask):

@@ -76,7 +76,9 @@ def neighbour_pairs(xy: np.ndarray, radius: Optional[float], method: str = "radi
             raise NotImplementedError("the Delaunay variant does not support periodic x; use method='radius'")
         simplices = Delaunay(xy).simplices
         edges = np.concatenate([simplices[:, [0, 1]], simplices[:, [1, 2]], simplices[:, [0, 2]]])
-        edges = np.unique(np.sort(edges, axis=1), axis=0)
+        edges = np.sort(edges, axis=1).astype(np.int64)
+        key = np.unique(edges[:, 0] * len(xy) + edges[:, 1])    # 1-D unique is much faster
+        edges = np.column_stack([key // len(xy), key % len(xy)])
         if radius:
             d = xy[edges[:, 1]] - xy[edges[:, 0]]
             edges = edges[np.hypot(d[:, 0], d[:, 1]) <= radius]

@@ -1,0 +1,7 @@
+"""``python -m saltdem_post`` (with ``python/`` on ``sys.path``)."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,382 @@
+"""Command line: ``saltdem-post COMMAND DUMP... [options]``.
+
+Every command reads the dumps frame by frame, writes PNG/CSV/JSON into the
+output directory (``-o``, default ``saltdem_post_out``) and prints a short
+summary.  ``saltdem-post COMMAND -h`` lists the options.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import warnings
+from typing import List, Optional, Sequence
+
+import numpy as np
+
+from . import __version__
+from .dump import DumpFormatError, FrameSelection, expand_paths, iter_frames, read_frame, scan_frames
+from .materials import DEFAULT_MARKER_COLUMN, MATERIALS, MaterialMap, markers
+from .measure import fault_displacement, salt_thickness, vertical_profile
+from .output import ensure_dir, write_csv, write_json
+from .progress import Progress
+from .strain import strain_between
+
+DEFAULT_STAGES = (100.0, 250.0, 500.0, 750.0, 1000.0)   # m of fault displacement, as in the paper
+DEFAULT_INCREMENT = 50.0                                # m: incremental strain window
+
+
+# ------------------------------------------------------------------ helpers
+
+def _progress(args, label: str) -> Optional[Progress]:
+    return None if args.quiet else Progress(label)
+
+
+def _selection(args, default: Sequence[str]) -> FrameSelection:
+    if args.frames or args.timesteps:
+        return FrameSelection(args.frames, args.timesteps)
+    return FrameSelection(list(default))
+
+
+def _out(args, name: str) -> str:
+    return os.path.join(ensure_dir(args.out), name)
+
+
+def _say(text: str) -> None:
+    print(text, flush=True)      # summaries on stdout; progress and warnings go to stderr
+
+
+def fault_history(paths: Sequence[str], materials: MaterialMap, fault_x: Optional[float] = None,
+                  progress: Optional[Progress] = None) -> List[dict]:
+    """Fault displacement of every frame relative to the first one."""
+    rows, ref = [], None
+    for frame in iter_frames(paths, progress=progress):
+        wall = frame.subset(materials.mask(frame["type"], "wall"))
+        if ref is None:
+            ref = wall
+        fd = fault_displacement(ref, wall, materials, fault_x) if wall.natoms else None
+        row = {"frame": frame.index, "timestep": frame.timestep, "time": frame.time}
+        row.update(fd.to_dict() if fd else {"dx": np.nan, "dy": np.nan, "slip": np.nan,
+                                             "throw": np.nan, "heave": np.nan})
+        rows.append(row)
+    return rows
+
+
+def previous_frame(disp: Sequence[float], cur: int, increment: float) -> Optional[int]:
+    """The frame before ``cur`` whose displacement is nearest to ``increment``
+    metres less; among equals the latest (so a run without fault motion
+    falls back to the preceding frame)."""
+    if cur <= 0:
+        return None
+    back = np.abs(np.asarray(disp[:cur], float) - (disp[cur] - increment))[::-1]
+    if not np.isfinite(back).any():
+        return cur - 1
+    return cur - 1 - int(np.nanargmin(back))
+
+
+def pick_stages(disp: Sequence[float], targets: Sequence[float], increment: float):
+    """For each target displacement: (target, frame nearest to it, frame
+    ``increment`` metres earlier or None)."""
+    disp = np.asarray(disp, float)
+    if not np.isfinite(disp).any():
+        raise ValueError("no fault displacement could be measured (no wall/basement discs?); "
+                         "give --disp-per-step or check --types")
+    stages = []
+    for target in targets:
+        cur = int(np.nanargmin(np.abs(disp - target)))
+        stages.append((float(target), cur, previous_frame(disp, cur, increment)))
+    return stages
+
+
+# ----------------------------------------------------------------- commands
+
+def cmd_info(args) -> dict:
+    paths = expand_paths(args.dumps)
+    headers = scan_frames(paths, _progress(args, "scanning"))
+    if not headers:
+        raise DumpFormatError("no frames found")
+    first = read_frame(paths, 0)
+    materials = MaterialMap.parse(args.types)
+    types, radius = first["type"], first.radius if ("radius" in first or "diameter" in first) else None
+    counts = {m: int(materials.mask(types, m).sum()) for m in MATERIALS}
+    info = {
+        "files": paths, "n_frames": len(headers),
+        "timesteps": [h.timestep for h in headers], "natoms": [h.natoms for h in headers],
+        "columns": headers[0].columns, "box_first": headers[0].box.to_dict(),
+        "box_last": headers[-1].box.to_dict(), "types": str(materials),
+        "material_counts_first_frame": counts,
+        "type_counts_first_frame": {int(t): int(c) for t, c in zip(*np.unique(types, return_counts=True))},
+    }
+    if radius is not None:
+        info["radius_m"] = {"min": float(radius.min()), "median": float(np.median(radius)),
+                            "max": float(radius.max())}
+    if args.marker_column in first:
+        mk = first[args.marker_column]
+        info["markers"] = {m: [int(mk[materials.mask(types, m)].min()), int(mk[materials.mask(types, m)].max())]
+                           for m in ("cover", "salt") if counts[m]}
+    write_json(_out(args, "info.json"), info)
+    _say(f"{len(headers)} frame(s) in {len(paths)} file(s); timesteps {headers[0].timestep}"
+         f"..{headers[-1].timestep}; {headers[0].natoms} atoms; columns: {' '.join(headers[0].columns)}")
+    _say("materials (first frame): " + ", ".join(f"{m} {n}" for m, n in counts.items()))
+    if radius is not None:
+        _say(f"disc radius {radius.min():.3g}-{radius.max():.3g} m (median {np.median(radius):.3g} m)")
+    return info
+
+
+def cmd_fault(args) -> List[dict]:
+    paths = expand_paths(args.dumps)
+    rows = fault_history(paths, MaterialMap.parse(args.types), args.fault_x, _progress(args, "fault"))
+    cols = ["frame", "timestep", "dx", "dy", "slip", "throw", "heave"]
+    write_csv(_out(args, "fault.csv"), {c: np.array([r[c] for r in rows]) for c in cols})
+    write_json(_out(args, "fault.json"), rows)
+    last = rows[-1]
+    _say(f"{len(rows)} frames; final fault displacement {last['slip']:.2f} m "
+         f"(throw {last['throw']:.2f} m, heave {last['heave']:.2f} m) at step {last['timestep']}")
+    return rows
+
+
+def cmd_strain(args) -> List[dict]:
+    from .figures import strain_figure
+    paths = expand_paths(args.dumps)
+    materials = MaterialMap.parse(args.types)
+    sel = _selection(args, ["all"] if args.incremental else ["-1"])
+    ref = None if args.incremental else read_frame(paths, int(args.ref))
+    summaries, prev = [], None
+    for frame in iter_frames(paths, sel, _progress(args, "strain")):
+        if args.incremental:
+            base, prev = prev, frame
+        else:
+            base = ref if frame.index != ref.index else None
+        if base is None:
+            continue
+        field = strain_between(base, frame, args.radius, args.method, args.min_neighbours)
+        tag = f"{base.timestep}_{frame.timestep}"
+        summary = field.summary()
+        if not args.no_csv:
+            summary["csv"] = write_csv(_out(args, f"strain_{tag}.csv"), field.table())
+        summary["png"] = strain_figure(field, frame, _out(args, f"strain_{args.quantity}_{tag}.png"), args.quantity,
+                                       materials, args.vmax)["path"]
+        summaries.append(summary)
+        ms = summary["max_shear"]
+        _say(f"steps {base.timestep} -> {frame.timestep}: {summary['n_particles']} discs, "
+             f"max shear median {ms.get('median', np.nan):.3g}, p99 {ms.get('p99', np.nan):.3g}, "
+             f"max {ms.get('max', np.nan):.3g} ({summary['n_undefined']} undefined)")
+    if not summaries:
+        raise ValueError("no frame pair to compare: select at least two frames")
+    write_json(_out(args, "strain_summary.json"), summaries)
+    return summaries
+
+
+def cmd_thickness(args) -> List[dict]:
+    from .figures import thickness_figure
+    paths = expand_paths(args.dumps)
+    materials = MaterialMap.parse(args.types)
+    profiles, summaries = [], []
+    for frame in iter_frames(paths, _selection(args, ["-1"]), _progress(args, "thickness")):
+        p = salt_thickness(frame, materials, args.bin_width, args.x_range, args.gap, args.weld_thickness)
+        s = p.summary()
+        s["csv"] = write_csv(_out(args, f"thickness_{frame.timestep}.csv"), p.table())
+        profiles.append(p)
+        summaries.append(s)
+        mn = s["minimum"]
+        _say(f"step {frame.timestep}: salt thickness mean {s['mean_thickness_m']:.1f} m, "
+             f"minimum {mn['thickness_m']:.1f} m at x = {mn['x_m'] / 1000:.3f} km; "
+             f"{len(s['welds'])} weld(s) (< {p.weld_thickness:.1f} m), welded length {s['welded_length_m']:.0f} m")
+    if len(profiles) > 1:
+        write_csv(_out(args, "thickness_evolution.csv"), {
+            "timestep": np.array([s["timestep"] for s in summaries]),
+            "min_thickness": np.array([s["minimum"]["thickness_m"] for s in summaries], float),
+            "x_min": np.array([s["minimum"]["x_m"] for s in summaries], float),
+            "welded_length": np.array([s["welded_length_m"] for s in summaries])})
+    thickness_figure(profiles, _out(args, "thickness.png"))
+    write_json(_out(args, "thickness_summary.json"), summaries)
+    return summaries
+
+
+def cmd_profile(args) -> List[dict]:
+    from .figures import profile_figure
+    paths = expand_paths(args.dumps)
+    materials = MaterialMap.parse(args.types)
+    needs_ref = args.quantity in ("ux", "uy")
+    ref = read_frame(paths, int(args.ref)) if needs_ref else None
+    results = []
+    for frame in iter_frames(paths, _selection(args, ["-1"]), _progress(args, "profile")):
+        profiles = [vertical_profile(frame, x, args.quantity, materials, args.halfwidth, ref,
+                                     args.bin_height, args.viscosity) for x in args.x]
+        for p in profiles:
+            s = p.summary()
+            s["csv"] = write_csv(_out(args, f"profile_{args.quantity}_x{p.x:g}_{frame.timestep}.csv"), p.table())
+            results.append(s)
+            if p.fit is None:
+                _say(f"step {frame.timestep}, x = {p.x:g} m: fewer than 3 salt discs in the window")
+                continue
+            f = p.fit
+            _say(f"step {frame.timestep}, x = {p.x:g} m: salt {f.base:.0f}-{f.top:.0f} m ({f.thickness:.0f} m), "
+                 f"{args.quantity} = {f.u_base:.4g} + Couette {f.couette:.4g}·η + Poiseuille "
+                 f"{f.poiseuille:.4g}·4η(1-η), R² {f.r2:.3f}, n {f.n}")
+        profile_figure(profiles, _out(args, f"profile_{args.quantity}_{frame.timestep}.png"))
+    write_json(_out(args, f"profile_{args.quantity}_fits.json"), results)
+    return results
+
+
+def cmd_figure(args) -> dict:
+    from .figures import PanelRow, paper_figure
+    paths = expand_paths(args.dumps)
+    materials = MaterialMap.parse(args.types)
+    headers = scan_frames(paths)
+    if not headers:
+        raise DumpFormatError("no frames found")
+    if args.disp_per_step is not None:
+        disp = np.array([(h.timestep - headers[0].timestep) * args.disp_per_step for h in headers])
+        source = f"{args.disp_per_step:g} m per timestep"
+    else:
+        history = fault_history(paths, materials, args.fault_x, _progress(args, "fault displacement"))
+        disp = np.array([r["slip"] for r in history])
+        source = "measured from the basement discs"
+        write_csv(_out(args, "fault.csv"), {c: np.array([r[c] for r in history])
+                                            for c in ("frame", "timestep", "dx", "dy", "slip")})
+    if args.frames:
+        stages = [(float(disp[c]), c, previous_frame(disp, c, args.increment))
+                  for c in FrameSelection(args.frames).resolve(len(headers))]
+    else:
+        stages = pick_stages(disp, args.at, args.increment)
+        reached = float(np.nanmax(disp))
+        for target, cur, _ in stages:
+            if abs(disp[cur] - target) > 0.5 * args.increment:
+                warnings.warn(f"no frame near {target:g} m of fault displacement (run reaches {reached:.1f} m); "
+                              f"using frame {cur} at {disp[cur]:.1f} m")
+        unique = {}
+        for stage in stages:                  # targets beyond the run map to the same frame
+            unique.setdefault(stage[1], stage)
+        stages = list(unique.values())
+    needed = {c for _, c, _ in stages} | {p for _, _, p in stages if p is not None}
+    if args.marker_column not in headers[0].columns:
+        needed.add(0)                         # markers are rebuilt from the first frame
+    frames = {f.index: f for f in iter_frames(paths, FrameSelection(sorted(needed)),
+                                              _progress(args, "reading stages"))}
+    rows, report = [], []
+    for target, cur, prev in stages:
+        frame = frames[cur]
+        field = (strain_between(frames[prev], frame, args.radius, args.method, args.min_neighbours)
+                 if prev is not None else None)
+        mk = markers(frame, materials, args.marker_column, reference=frames.get(0))
+        if np.isfinite(disp[cur]):
+            label = f"{disp[cur]:.0f} m fault displacement (step {frame.timestep})"
+        else:
+            label = f"step {frame.timestep}"
+        inc = ""
+        if prev is not None:
+            span = (f"{disp[prev]:.0f}–{disp[cur]:.0f} m" if np.isfinite(disp[[prev, cur]]).all()
+                    else f"steps {frames[prev].timestep}–{frame.timestep}")
+            inc = f"incremental max. shear strain, {span}"
+        rows.append(PanelRow(label, frame, mk, field, inc))
+        report.append({"target_m": target, "frame": cur, "timestep": frame.timestep, "displacement_m": disp[cur],
+                       "previous_frame": prev, "previous_displacement_m": disp[prev] if prev is not None else None,
+                       "strain": field.summary() if field is not None else None})
+    xlim, ylim = ([1000.0 * v for v in lim] if lim else None for lim in (args.xlim, args.ylim))   # km -> m
+    info = paper_figure(rows, _out(args, args.name), materials, args.strain_max, xlim, ylim, args.dpi, args.title)
+    result = {"figure": info, "displacement_source": source, "increment_m": args.increment, "stages": report}
+    write_json(_out(args, os.path.splitext(args.name)[0] + ".json"), result)
+    _say(f"{info['path']}: {len(rows)} stage(s) ({source}); strain colour scale 0-{info['strain_max']:g}; "
+         f"{info['pixels'][0]}x{info['pixels'][1]} px")
+    for r in report:
+        inc = (f"increment from frame {r['previous_frame']}" if r["previous_frame"] is not None
+               else "first frame, no increment")
+        _say(f"  {r['displacement_m']:.1f} m: frame {r['frame']} (step {r['timestep']}), {inc}")
+    return result
+
+
+# ------------------------------------------------------------------- parser
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="saltdem-post",
+        description="SaltDEM post-processing: strain, salt thickness and welds, fault displacement, "
+                    "flow profiles and paper-style figures from the package's LAMMPS dumps.",
+        epilog="Give the dumps first, then options: saltdem-post figure run/dump.*.txt.gz --at 100 250. "
+               "See docs/postprocessing.md.")
+    p.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("dumps", nargs="+", help="dump files or globs (text, optionally .gz)")
+    common.add_argument("-o", "--out", default="saltdem_post_out", help="output directory (default %(default)s)")
+    common.add_argument("--types", default=None,
+                        help="type->material map, e.g. 'cover=1,4;salt=2;wall=3' (default cover=1;salt=2;wall=3)")
+    common.add_argument("--marker-column", default=DEFAULT_MARKER_COLUMN, help="per-atom marker column")
+    common.add_argument("-q", "--quiet", action="store_true", help="no progress display")
+    frames = argparse.ArgumentParser(add_help=False)
+    frames.add_argument("--frames", nargs="+", metavar="F",
+                        help="frame indices (negative from the end) or slices a:b[:c], or 'all'")
+    frames.add_argument("--timesteps", nargs="+", type=int, metavar="T", help="select frames by timestep")
+    nb = argparse.ArgumentParser(add_help=False)
+    nb.add_argument("--radius", type=float, help="neighbour radius in m (default two median disc diameters)")
+    nb.add_argument("--method", choices=("radius", "delaunay"), default="radius", help="neighbour definition")
+    nb.add_argument("--min-neighbours", type=int, default=3)
+    fx = argparse.ArgumentParser(add_help=False)
+    fx.add_argument("--fault-x", type=float, help="x (m) separating footwall and hanging-wall basement discs")
+
+    def add(name, func, parents, help_):
+        s = sub.add_parser(name, parents=parents, help=help_, description=help_)
+        s.set_defaults(func=func)
+        return s
+
+    add("info", cmd_info, [common], "frames, columns, box, materials and disc sizes of the dumps")
+    add("fault", cmd_fault, [common, fx], "fault displacement of every frame from the basement discs")
+
+    s = add("strain", cmd_strain, [common, frames, nb],
+            "per-disc strain: finite (each selected frame vs --ref) or --incremental (consecutive frames)")
+    s.add_argument("--ref", default="0", help="reference frame index for finite strain (default 0)")
+    s.add_argument("--incremental", action="store_true", help="strain between consecutive selected frames")
+    s.add_argument("--quantity", default="max_shear",
+                   help="field mapped in the PNG: max_shear, dilatation, rotation, d2min, exx, ...")
+    s.add_argument("--vmax", type=float, help="colour-scale maximum")
+    s.add_argument("--no-csv", action="store_true", help="skip the per-disc CSV (large for big scenes)")
+
+    s = add("thickness", cmd_thickness, [common, frames],
+            "salt thickness profile along x, its minimum and welds (default: last frame)")
+    s.add_argument("--bin-width", type=float, help="column width in m (default two median disc diameters)")
+    s.add_argument("--weld-thickness", type=float, help="weld threshold in m (default one salt disc diameter)")
+    s.add_argument("--gap", type=float, help="pores shorter than this (m) count as salt (default half a disc diameter)")
+    s.add_argument("--x-range", type=float, nargs=2, metavar=("X0", "X1"), help="x extent in m")
+
+    s = add("profile", cmd_profile, [common, frames],
+            "vertical profile through the salt at given x with a Couette + Poiseuille fit (default: last frame)")
+    s.add_argument("--x", type=float, nargs="+", required=True, help="profile positions in m")
+    s.add_argument("--quantity", default="vx",
+                   help="vx (velocity, default), ux/uy (displacement since --ref: marker line), or any column")
+    s.add_argument("--ref", default="0", help="reference frame for ux/uy (default 0)")
+    s.add_argument("--halfwidth", type=float, help="half-width of the sampling window in m")
+    s.add_argument("--bin-height", type=float, help="height of the averaging bins in m")
+    s.add_argument("--viscosity", type=float, help="salt viscosity (Pa s), to report dp/dx")
+
+    s = add("figure", cmd_figure, [common, nb, fx],
+            "paper-style panels: markers beside incremental shear strain at chosen fault displacements")
+    s.add_argument("--at", type=float, nargs="+", default=list(DEFAULT_STAGES),
+                   help="fault displacements in m (default %(default)s)")
+    s.add_argument("--frames", nargs="+", metavar="F", help="show these frames instead of --at")
+    s.add_argument("--increment", type=float, default=DEFAULT_INCREMENT,
+                   help="displacement window of the incremental strain, m (default %(default)s)")
+    s.add_argument("--disp-per-step", type=float,
+                   help="fault displacement per timestep (m); default: measure it from the basement")
+    s.add_argument("--strain-max", type=float, help="top of the strain colour scale (default: p99, rounded)")
+    s.add_argument("--xlim", type=float, nargs=2, metavar=("X0", "X1"), help="x range in km")
+    s.add_argument("--ylim", type=float, nargs=2, metavar=("Y0", "Y1"), help="y range in km")
+    s.add_argument("--dpi", type=int, default=150)
+    s.add_argument("--name", default="paper_figure.png", help="output file name")
+    s.add_argument("--title")
+    return p
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    args = _parser().parse_args(argv)
+    with warnings.catch_warnings():
+        warnings.simplefilter("always", UserWarning)
+        warnings.showwarning = lambda msg, *a, **k: print(f"saltdem-post: warning: {msg}", file=sys.stderr)
+        try:
+            args.func(args)
+        except (OSError, DumpFormatError, ValueError, KeyError, IndexError, NotImplementedError) as exc:
+            print(f"saltdem-post: error: {exc}", file=sys.stderr)
+            return 2
+    return 0

@@ -7,6 +7,7 @@
 #include "comm.h"
 #include "error.h"
 #include "fix_dummy.h"
+#include "fix_saltdem_rebuild.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
@@ -19,8 +20,9 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *history_id) :
-    Pair(lmp), hist_id(history_id), fix_dummy(nullptr), fix_history(nullptr),
-    transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr), dtfactor(0.2)
+    Pair(lmp), hist_id(history_id), fix_dummy(nullptr), fix_history(nullptr), fix_rebuild(nullptr),
+    transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr),
+    reach_abs(nullptr), dtfactor(0.2)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;
@@ -38,6 +40,7 @@ PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *history_id) :
 PairSaltdem::~PairSaltdem()
 {
   if (copymode) return;
+  if (fix_rebuild) modify->delete_fix(fix_rebuild->id);
   if (history) {
     if (fix_history)
       modify->delete_fix(fmt::format("{}{}", hist_id, instance_me));
@@ -49,6 +52,7 @@ PairSaltdem::~PairSaltdem()
     memory->destroy(setflag);
     memory->destroy(cutsq);
     memory->destroy(extra);
+    memory->destroy(reach_abs);
     delete[] onerad;
     delete[] maxrad;
   }
@@ -65,6 +69,7 @@ void PairSaltdem::allocate()
     for (int j = i; j <= n; j++) setflag[i][j] = 0;
   memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
   memory->create(extra, n + 1, n + 1, "pair:extra");
+  memory->create(reach_abs, n + 1, n + 1, "pair:reach_abs");
   onerad = new double[n + 1];
   maxrad = new double[n + 1];
   allocate_params(n);
@@ -93,18 +98,24 @@ void PairSaltdem::init_style()
                "Pair style {} needs the velocities of ghost atoms: add 'comm_modify vel yes'",
                force->pair_style);
 
+  // history needs the size list (it flags touching pairs); a law without
+  // history uses the plain list, whose cutoff (init_one) may reach far
   if (history)
     neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_HISTORY);
   else
-    neighbor->add_request(this, NeighConst::REQ_SIZE);
+    neighbor->add_request(this);
 
+  // no suffix: NEIGH_HISTORY/omp of LAMMPS 4Feb2025 drops the history of
+  // ghost partners and the non-default transfer signs
   if (history && !fix_history) {
     auto cmd = fmt::format("{}{} all NEIGH_HISTORY {}", hist_id, instance_me, size_history);
     fix_history = dynamic_cast<FixNeighHistory *>(
-        modify->replace_fix(fmt::format("{}_DUMMY{}", hist_id, instance_me), cmd, 1));
+        modify->replace_fix(fmt::format("{}_DUMMY{}", hist_id, instance_me), cmd, 0));
     fix_history->pair = this;
     fix_dummy = nullptr;
   }
+
+  if (fix_rebuild) fix_rebuild->range = 0.0;    // init_one() sets it again
 
   // largest radius per type sets the ghost cutoff
   const int n = atom->ntypes;
@@ -126,23 +137,31 @@ void PairSaltdem::init_style()
 }
 
 /* smallest mass per type that the integrator sees: rmass times the inertia
-   factor of a SaltDEM integrator (fix saltdem/nve) acting on the atom */
+   factor of a SaltDEM integrator (fix saltdem/nve); atoms that no fix
+   integrates, or whose motion is prescribed (fix move, or a fix that
+   answers extract("prescribed")), are walls of unbounded mass */
+
+double PairSaltdem::inertia_scale(int i)
+{
+  double scale = -1.0;    // no integrator: a wall
+  for (auto &ifix : modify->get_fix_list()) {
+    if (!ifix->time_integrate || !(atom->mask[i] & ifix->groupbit)) continue;
+    int dim;
+    if (strcmp(ifix->style, "move") == 0 || ifix->extract("prescribed", dim)) return -1.0;
+    auto s = (double *) ifix->extract("inertia", dim);
+    scale = s ? *s : 1.0;
+  }
+  return scale;
+}
 
 void PairSaltdem::min_inertial_mass(double *mmin)
 {
   const int n = atom->ntypes;
   std::vector<double> local(n + 1, DBL_MAX);
-  auto fixes = modify->get_fix_by_style("^saltdem/nve");
-  int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
-    double scale = 1.0;
-    for (auto &ifix : fixes) {
-      int dim;
-      auto s = (double *) ifix->extract("inertia", dim);
-      if (s && (mask[i] & ifix->groupbit)) scale = *s;
-    }
+    const double scale = inertia_scale(i);
     const int t = atom->type[i];
-    local[t] = MIN(local[t], scale * atom->rmass[i]);
+    if (scale > 0.0) local[t] = MIN(local[t], scale * atom->rmass[i]);
   }
   MPI_Allreduce(&local[1], &mmin[1], n, MPI_DOUBLE, MPI_MIN, world);
 }
@@ -151,26 +170,27 @@ void PairSaltdem::min_inertial_mass(double *mmin)
 
 double PairSaltdem::init_one(int i, int j)
 {
-  if (setflag[i][j] == 0) {
-    if (!setflag[i][i] || !setflag[j][j])
-      error->all(FLERR,
-                 "Pair style {}: coefficients for types {} {} are not set, and cannot be mixed "
-                 "because type {} {} has none. Add a pair_coeff line for them",
-                 force->pair_style, i, j, setflag[i][i] ? j : i, setflag[i][i] ? j : i);
-    mix(i, j);
-  }
+  if (setflag[i][j] == 0) mix(i, j);    // Pair::init() has checked that I,I and J,J are set
   memcpy(pair_params(j, i), pair_params(i, j), params_size());
   extra[i][j] = extra[j][i] = range(i, j);
+  reach_abs[i][j] = reach_abs[j][i] = range_abs(i, j);
 
-  // a pair is in the neighbour list when r < ri + rj + skin: the range
-  // beyond contact must fit inside the skin
-  if (extra[i][j] >= neighbor->skin)
+  // in the size list a pair is listed when r < ri + rj + skin: the range
+  // beyond contact must fit inside the skin, and the list is rebuilt early
+  // enough to hold every pair that can close to within the range
+  if (history && extra[i][j] > 0.0) {
+    if (!fix_rebuild)
+      fix_rebuild = dynamic_cast<FixSaltdemRebuild *>(
+          modify->add_fix(fmt::format("SALTDEM_REBUILD{} all SALTDEM_REBUILD", instance_me)));
+    fix_rebuild->range = MAX(fix_rebuild->range, extra[i][j]);
+  }
+  if (history && extra[i][j] >= neighbor->skin)
     error->all(FLERR,
                "Pair style {}: interaction range {:.6g} beyond contact for types {} {} is not "
                "smaller than the neighbor skin {:.6g}; use e.g. 'neighbor {:.3g} bin'",
                force->pair_style, extra[i][j], i, j, neighbor->skin, 4.0 * extra[i][j]);
 
-  return maxrad[i] + maxrad[j] + extra[i][j];
+  return MAX(maxrad[i] + maxrad[j] + extra[i][j], reach_abs[i][j]);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -51,9 +51,11 @@ class PairSaltdem : public Pair {
   int history, size_history;   // values kept per touching pair
   class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
+  class FixSaltdemRebuild *fix_rebuild;    // keeps pairs within the range listed
   double *transfer_factor;     // sign of each history value when (i,j) -> (j,i)
   double *onerad, *maxrad;     // largest radius per type (local, global)
   double **extra;              // interaction range beyond contact per type pair
+  double **reach_abs;          // interaction range between centres, whatever the radii
   double dtfactor;             // stable dt = dtfactor * sqrt(m/k) (elastic)
 
   virtual void allocate();
@@ -62,9 +64,11 @@ class PairSaltdem : public Pair {
   virtual size_t params_size() const = 0;
   virtual void mix(int i, int j) = 0;             // fill params[i][j] from i,i and j,j
   virtual double range(int i, int j) const = 0;   // interaction range beyond contact
+  virtual double range_abs(int, int) const { return 0.0; }    // range between centres
   // the largest stable dt given the smallest inertial mass per type (<= 0: none)
   virtual double stable_dt(const double *mmin, std::string &why) = 0;
   void min_inertial_mass(double *mmin);
+  double inertia_scale(int i);
   void check_types(int narg, char **arg, int &ilo, int &ihi, int &jlo, int &jhi);
 };
 
@@ -108,7 +112,7 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
       const double dely = x[i][1] - x[j][1];
       const double delz = x[i][2] - x[j][2];
       const double rsq = delx * delx + dely * dely + delz * delz;
-      const double reach = radi + radius[j] + extra[itype][jtype];
+      const double reach = MAX(radi + radius[j] + extra[itype][jtype], reach_abs[itype][jtype]);
       double *hist = nhist ? &allhist[nhist * jj] : nullptr;
 
       if (rsq >= reach * reach || rsq == 0.0) {
@@ -121,7 +125,7 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
       SaltDEM::contact_kinematics(x[i], x[j], v[i], v[j], omega[i], omega[j], radi, radius[j],
                                   rmass[i], rmass[j], std::sqrt(rsq), c);
       double evdwl = 0.0;
-      const bool touching = self->law(itype, jtype, c, hist, advance, fij, ti, tj, evdwl);
+      const bool touching = self->law(i, j, itype, jtype, c, hist, advance, fij, ti, tj, evdwl);
       if (nhist) {
         touch[jj] = touching ? 1 : 0;
         if (!touching)

@@ -171,7 +171,7 @@ void PairSaltdemCohesive::init_style()
       if (setflag[i][j] && params[i][j].kr > 0.0) want = true;
   if (fix_history && want != rolling)
     error->all(FLERR, "Pair style saltdem/cohesive: rolling resistance was {} after the first run; "
-               "set it before the first run (or re-issue pair_style)",
+               "set it before the first run (or issue 'pair_style none' and define the pair style again)",
                want ? "switched on" : "switched off");
   rolling = want;
   size_history = rolling ? 6 : 3;
@@ -195,9 +195,9 @@ double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
   double best = DBL_MAX;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
-      if (!setflag[i][j] && !(setflag[i][i] && setflag[j][j])) continue;
-      if (mmin[i] == DBL_MAX || mmin[j] == DBL_MAX) continue;
-      const auto &p = setflag[i][j] ? params[i][j] : params[i][i];
+      if (!setflag[i][j]) mix(i, j);    // init_one() has not run yet
+      if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
+      const auto &p = params[i][j];
       const double m = MIN(mmin[i], mmin[j]);
       const bool tang = rot * p.kt > p.kn;
       const double k = tang ? rot * p.kt : p.kn;

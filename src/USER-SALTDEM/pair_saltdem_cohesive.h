@@ -28,7 +28,7 @@ class PairSaltdemCohesive : public PairSaltdem {
   void *extract(const char *, int &) override;
 
   // the force law, inlined into the shared pair loop
-  bool law(int itype, int jtype, const SaltDEM::Contact &c, double *hist, bool advance,
+  bool law(int, int, int itype, int jtype, const SaltDEM::Contact &c, double *hist, bool advance,
            double *f, double *ti, double *tj, double &evdwl) const
   {
     return SaltDEM::cohesive_force(params[itype][jtype], c, hist, rolling, dt, advance, f, ti, tj,

@@ -25,6 +25,7 @@ struct Contact {
   double r;           // centre distance
   double delta;       // overlap r_i + r_j - r (> 0 when touching, < 0 is a gap)
   double li, lj;      // lever arms from the centres to the contact point
+  double vr[3];       // relative velocity of the centres v_i - v_j
   double vn;          // normal relative velocity (v_i - v_j).n, < 0 approaching
   double vt[3];       // tangential relative velocity at the contact point
   double wr[3];       // relative angular velocity w_i - w_j
@@ -48,6 +49,9 @@ inline void contact_kinematics(const double *xi, const double *xj, const double 
   c.lj = radj - 0.5 * c.delta;
 
   const double vr0 = vi[0] - vj[0], vr1 = vi[1] - vj[1], vr2 = vi[2] - vj[2];
+  c.vr[0] = vr0;
+  c.vr[1] = vr1;
+  c.vr[2] = vr2;
   c.vn = vr0 * c.n[0] + vr1 * c.n[1] + vr2 * c.n[2];
   // rotation adds -(li w_i + lj w_j) x n at the contact point
   const double w0 = c.li * wi[0] + c.lj * wj[0];
@@ -164,6 +168,8 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
   // compressive here); sliding caps the force and resets the spring to it
   double *xi = hist;
   rotate_into_plane(xi, c.n);
+  if (advance)    // the spring first follows this step's sliding, as in gran/hooke/history
+    for (int k = 0; k < 3; k++) xi[k] += c.vt[k] * dt;
   const double gt = 2.0 * p.zeta_t * std::sqrt(c.meff * p.kt);
   double ft[3];
   for (int k = 0; k < 3; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
@@ -177,8 +183,6 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
     }
   }
   evdwl += 0.5 * p.kt * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-  if (advance)
-    for (int k = 0; k < 3; k++) xi[k] += c.vt[k] * dt;
   for (int k = 0; k < 3; k++) f[k] += ft[k];
   contact_torques(c, ft, ti, tj);
 
@@ -191,6 +195,8 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
     const double vr[3] = {c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]),
                           c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]),
                           c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0])};
+    if (advance)
+      for (int k = 0; k < 3; k++) psi[k] += vr[k] * dt;
     double fr[3];
     for (int k = 0; k < 3; k++) fr[k] = -p.kr * psi[k];
     const double frmax = p.mur * fn_el;
@@ -203,8 +209,6 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
       }
     }
     evdwl += 0.5 * p.kr * (psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]);
-    if (advance)
-      for (int k = 0; k < 3; k++) psi[k] += vr[k] * dt;
     const double tr0 = c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]);
     const double tr1 = c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]);
     const double tr2 = c.reff * (c.n[0] * fr[1] - c.n[1] * fr[0]);
@@ -216,6 +220,69 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
     tj[2] -= tr2;
   }
   return true;
+}
+
+/* ----------------------------------------------------------------------
+   Viscous salt law (pair saltdem/viscous)
+
+   Two forms, chosen per type pair:
+   - FLUID (salt-salt): the Morris et al. (1997) SPH viscosity, a dashpot on
+     the full relative velocity whose coefficient is a smooth kernel of the
+     distance, summed over all neighbours within 2h.  It discretises
+     eta * laplacian(v), so the emergent viscosity is eta itself, and it is
+     linear in the velocities: Newtonian by construction.  Elastic repulsion
+     of touching discs carries the load.
+   - CONTACT (boundaries: salt-wall, cover-salt, cover-wall): elastic
+     repulsion plus normal and tangential dashpots at the contact point,
+     within a small gap; a stiff tangential dashpot makes the interface
+     no-slip.
+------------------------------------------------------------------------- */
+
+enum ViscousMode { VISCOUS_FLUID = 0, VISCOUS_CONTACT = 1 };
+
+struct ViscousParams {
+  int mode;         // VISCOUS_FLUID or VISCOUS_CONTACT
+  double eta;       // dynamic viscosity (Pa s)
+  double kn;        // elastic normal stiffness (force/length)
+  double h;         // FLUID: smoothing length; the kernel reaches 2h
+  double phi;       // FLUID: packing fraction: particle volume = disc volume / phi
+  double kfac;      // FLUID: 2 eta * kernel constant (derived: dimension, h)
+  double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
+  double ratio;     // CONTACT: tangential / normal dashpot coefficient
+  double gn, gt;    // CONTACT: dashpot coefficients (derived: calibration * eta)
+};
+
+/* Wendland C2 kernel: |dW/dr| / r = C (1 - r/2h)^3 with C = 35/(4 pi h^4)
+   in 2D and 105/(16 pi h^5) in 3D */
+inline double wendland_c2_grad_over_r(int dimension, double h)
+{
+  return (dimension == 2) ? 35.0 / (4.0 * M_PI * h * h * h * h)
+                          : 105.0 / (16.0 * M_PI * h * h * h * h * h);
+}
+
+/* vi, vj: particle volumes (disc area / phi in 2D).  Returns true while
+   the discs touch. */
+inline bool viscous_force(const ViscousParams &p, const Contact &c, double voli, double volj,
+                          double *f, double *ti, double *tj, double &evdwl)
+{
+  const bool touching = c.delta > 0.0;
+  const double fel = touching ? p.kn * c.delta : 0.0;
+  evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
+  if (p.mode == VISCOUS_FLUID) {
+    const double s = 1.0 - 0.5 * c.r / p.h;
+    const double g = (s > 0.0) ? p.kfac * voli * volj * s * s * s : 0.0;
+    for (int k = 0; k < 3; k++) f[k] = fel * c.n[k] - g * c.vr[k];
+    ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
+    return touching;
+  }
+  const double fn = fel - p.gn * c.vn;
+  double ft[3];
+  for (int k = 0; k < 3; k++) {
+    ft[k] = -p.gt * c.vt[k];
+    f[k] = fn * c.n[k] + ft[k];
+  }
+  contact_torques(c, ft, ti, tj);
+  return touching;
 }
 
 }    // namespace SaltDEM

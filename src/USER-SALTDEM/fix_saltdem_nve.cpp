@@ -1,0 +1,144 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   fix saltdem/nve: velocity-Verlet for discs (2D, I = m r^2/2) and spheres
+   (3D, I = 2 m r^2/5) with an optional inertia factor S.  The integrator
+   divides forces and torques by S*m and S*I while gravity and all contact
+   forces keep their true values: inertia is scaled, weight is not.  In a
+   quasi-static viscous flow (Re << 1) this leaves the flow unchanged and
+   lets an explicit dashpot of viscosity eta run at S times the time step
+   (see pair saltdem/viscous).  It also stops the run with a clear message
+   as soon as a velocity is no longer finite.
+------------------------------------------------------------------------- */
+
+#include "fix_saltdem_nve.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "group.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+FixSaltdemNVE::FixSaltdemNVE(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), inertia(1.0), check_every(100)
+{
+  time_integrate = 1;
+  int iarg = 3;
+  while (iarg < narg) {
+    if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, fmt::format("fix saltdem/nve {}", arg[iarg]), error);
+    if (strcmp(arg[iarg], "inertia") == 0) {
+      inertia = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (inertia < 1.0)
+        error->all(FLERR, "Fix saltdem/nve: inertia {} must be >= 1 (1 = true inertia)", inertia);
+    } else if (strcmp(arg[iarg], "check") == 0) {
+      check_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (check_every < 0) error->all(FLERR, "Fix saltdem/nve: check {} must be >= 0", check_every);
+    } else
+      error->all(FLERR, "Fix saltdem/nve: unknown keyword '{}' (expected: inertia, check)", arg[iarg]);
+    iarg += 2;
+  }
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->all(FLERR, "Fix saltdem/nve requires atom style sphere (radius, rmass, omega, torque)");
+}
+
+int FixSaltdemNVE::setmask()
+{
+  return INITIAL_INTEGRATE | FINAL_INTEGRATE;
+}
+
+void FixSaltdemNVE::init()
+{
+  reset_dt();
+  inertia_factor = (domain->dimension == 2) ? 0.5 : 0.4;
+  if (group->count(igroup) == 0)
+    error->warning(FLERR, "Fix saltdem/nve {}: group {} has no atoms", id, group->names[igroup]);
+}
+
+void FixSaltdemNVE::reset_dt()
+{
+  dtv = update->dt;
+  dtf = 0.5 * update->dt * force->ftm2v;
+}
+
+/* one half-kick of v and omega and the drift of x */
+
+void FixSaltdemNVE::initial_integrate(int)
+{
+  double **x = atom->x, **v = atom->v, **f = atom->f;
+  double **omega = atom->omega, **torque = atom->torque;
+  double *radius = atom->radius, *rmass = atom->rmass;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double dtfs = dtf / inertia;
+  const double dtir = dtfs / inertia_factor;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double dtfm = dtfs / rmass[i];
+    v[i][0] += dtfm * f[i][0];
+    v[i][1] += dtfm * f[i][1];
+    v[i][2] += dtfm * f[i][2];
+    x[i][0] += dtv * v[i][0];
+    x[i][1] += dtv * v[i][1];
+    x[i][2] += dtv * v[i][2];
+    const double dtirotate = dtir / (rmass[i] * radius[i] * radius[i]);
+    omega[i][0] += dtirotate * torque[i][0];
+    omega[i][1] += dtirotate * torque[i][1];
+    omega[i][2] += dtirotate * torque[i][2];
+  }
+}
+
+void FixSaltdemNVE::final_integrate()
+{
+  double **v = atom->v, **f = atom->f;
+  double **omega = atom->omega, **torque = atom->torque;
+  double *radius = atom->radius, *rmass = atom->rmass;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const double dtfs = dtf / inertia;
+  const double dtir = dtfs / inertia_factor;
+
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double dtfm = dtfs / rmass[i];
+    v[i][0] += dtfm * f[i][0];
+    v[i][1] += dtfm * f[i][1];
+    v[i][2] += dtfm * f[i][2];
+    const double dtirotate = dtir / (rmass[i] * radius[i] * radius[i]);
+    omega[i][0] += dtirotate * torque[i][0];
+    omega[i][1] += dtirotate * torque[i][1];
+    omega[i][2] += dtirotate * torque[i][2];
+  }
+  if (check_every && update->ntimestep % check_every == 0) check_finite();
+}
+
+/* a NaN or Inf never passes silently: name the atom, its type and the step */
+
+void FixSaltdemNVE::check_finite()
+{
+  double **x = atom->x, **v = atom->v;
+  int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    if (!std::isfinite(v[i][0] + v[i][1] + v[i][2] + x[i][0] + x[i][1] + x[i][2]))
+      error->one(FLERR,
+                 "Fix saltdem/nve: atom {} (type {}) has a non-finite position or velocity at "
+                 "step {}: the run is numerically unstable. Reduce the timestep (pair styles "
+                 "saltdem/* report their stable limit) or raise the inertia of viscous discs",
+                 atom->tag[i], atom->type[i], update->ntimestep);
+  }
+}
+
+void *FixSaltdemNVE::extract(const char *str, int &dim)
+{
+  dim = 0;
+  if (strcmp(str, "inertia") == 0) return (void *) &inertia;
+  return nullptr;
+}

@@ -1,0 +1,48 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+------------------------------------------------------------------------- */
+
+#include "fix_saltdem_rebuild.h"
+
+#include "atom.h"
+#include "neighbor.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+FixSaltdemRebuild::FixSaltdemRebuild(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), range(0.0)
+{
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+}
+
+int FixSaltdemRebuild::setmask()
+{
+  return POST_INTEGRATE;
+}
+
+/* runs after the atoms moved and before Neighbor::decide() of this step */
+
+void FixSaltdemRebuild::post_integrate()
+{
+  double **xhold = neighbor->get_xhold();
+  if (range <= 0.0 || !xhold) return;    // without 'check yes' LAMMPS keeps no xhold
+  const double trigger = 0.5 * (neighbor->skin - range);
+  const double triggersq = trigger * trigger;
+  double **x = atom->x;
+  int flag = 0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double dx = x[i][0] - xhold[i][0];
+    const double dy = x[i][1] - xhold[i][1];
+    const double dz = x[i][2] - xhold[i][2];
+    if (dx * dx + dy * dy + dz * dz > triggersq) {
+      flag = 1;
+      break;
+    }
+  }
+  int any;
+  MPI_Allreduce(&flag, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any) next_reneighbor = update->ntimestep;
+}

@@ -1,0 +1,287 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   pair saltdem/viscous: the linear Newtonian salt, and the no-slip
+   boundary contact of cover-salt, salt-wall and cover-wall pairs.  The law
+   is SaltDEM::viscous_force (saltdem_contact.h); this file turns the
+   requested viscosity into dashpot coefficients and sets the stable dt.
+------------------------------------------------------------------------- */
+
+#include "pair_saltdem_viscous.h"
+
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+
+#include <cfloat>
+#include <cmath>
+
+using namespace LAMMPS_NS;
+
+PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
+    PairSaltdem(lmp, nullptr), params(nullptr), eta(nullptr),
+    calibration(DEFAULT_CALIBRATION), viscfactor(0.5)
+{
+}
+
+PairSaltdemViscous::~PairSaltdemViscous()
+{
+  if (copymode) return;
+  memory->destroy(params);
+  memory->destroy(eta);
+}
+
+void PairSaltdemViscous::allocate_params(int n)
+{
+  memory->create(params, n + 1, n + 1, "pair:params");
+  memory->create(eta, n + 1, n + 1, "pair:eta");
+}
+
+void PairSaltdemViscous::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+  auto tally = [this](int i, int j, double e, double fx, double fy, double fz, double dx,
+                      double dy, double dz) {
+    ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
+  };
+  if (evflag)
+    loop<PairSaltdemViscous, 1>(this, 0, list->inum, atom->f, atom->torque, tally);
+  else
+    loop<PairSaltdemViscous, 0>(this, 0, list->inum, atom->f, atom->torque, tally);
+}
+
+/* pair_style saltdem/viscous [calibration C] [dtfactor C] [viscfactor C] */
+
+void PairSaltdemViscous::settings(int narg, char **arg)
+{
+  int iarg = 0;
+  while (iarg < narg) {
+    if (iarg + 2 > narg)
+      utils::missing_cmd_args(FLERR, fmt::format("pair_style saltdem/viscous {}", arg[iarg]), error);
+    const double v = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    if (strcmp(arg[iarg], "calibration") == 0) {
+      if (v <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: calibration {} must be > 0", v);
+      calibration = v;
+    } else if (strcmp(arg[iarg], "dtfactor") == 0) {
+      if (v <= 0.0 || v > 0.8)
+        error->all(FLERR, "Pair style saltdem/viscous: dtfactor {} must be in (0, 0.8]", v);
+      dtfactor = v;
+    } else if (strcmp(arg[iarg], "viscfactor") == 0) {
+      if (v <= 0.0 || v > 1.0)
+        error->all(FLERR, "Pair style saltdem/viscous: viscfactor {} must be in (0, 1]", v);
+      viscfactor = v;
+    } else
+      error->all(FLERR,
+                 "Pair style saltdem/viscous: unknown keyword '{}' (expected: calibration, "
+                 "dtfactor, viscfactor)",
+                 arg[iarg]);
+    iarg += 2;
+  }
+}
+
+/* pair_coeff I J eta kn fluid h [phi P]
+   pair_coeff I J eta kn contact gap [tangential ratio] */
+
+void PairSaltdemViscous::coeff(int narg, char **arg)
+{
+  const char *usage =
+      "pair_coeff I J eta kn fluid h [phi P]  or  pair_coeff I J eta kn contact gap [tangential R]";
+  if (narg < 6)
+    error->all(FLERR, "Pair style saltdem/viscous: pair_coeff needs 6 or more arguments, got {}: {}",
+               narg, usage);
+  int ilo, ihi, jlo, jhi;
+  check_types(narg, arg, ilo, ihi, jlo, jhi);
+
+  SaltDEM::ViscousParams p{};
+  p.eta = utils::numeric(FLERR, arg[2], false, lmp);
+  p.kn = utils::numeric(FLERR, arg[3], false, lmp);
+  if (p.eta <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: eta = {} must be > 0", p.eta);
+  if (p.kn <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: kn = {} must be > 0", p.kn);
+  p.phi = 0.84;
+  p.ratio = 1.0;
+
+  std::string kw = arg[4];
+  std::string opt;
+  if (kw == "fluid") {
+    p.mode = SaltDEM::VISCOUS_FLUID;
+    p.h = utils::numeric(FLERR, arg[5], false, lmp);
+    if (p.h <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid h = {} must be > 0", p.h);
+    opt = "phi";
+  } else if (kw == "contact") {
+    p.mode = SaltDEM::VISCOUS_CONTACT;
+    p.gap = utils::numeric(FLERR, arg[5], false, lmp);
+    if (p.gap < 0.0) error->all(FLERR, "Pair style saltdem/viscous: contact gap = {} must be >= 0", p.gap);
+    opt = "tangential";
+  } else
+    error->all(FLERR, "Pair style saltdem/viscous: unknown law '{}' (expected fluid or contact); usage: {}",
+               kw, usage);
+
+  if (narg == 8 && opt == arg[6]) {
+    const double v = utils::numeric(FLERR, arg[7], false, lmp);
+    if (opt == "phi") {
+      if (v <= 0.0 || v > 1.0)
+        error->all(FLERR, "Pair style saltdem/viscous: phi = {} must be in (0, 1]", v);
+      p.phi = v;
+    } else {
+      if (v < 0.0) error->all(FLERR, "Pair style saltdem/viscous: tangential ratio = {} must be >= 0", v);
+      p.ratio = v;
+    }
+  } else if (narg != 6)
+    error->all(FLERR, "Pair style saltdem/viscous: unexpected arguments after '{} {}' (allowed: {} value); usage: {}",
+               kw, arg[5], opt, usage);
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      params[i][j] = p;
+      eta[i][j] = p.eta;
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients" + utils::errorurl(21));
+}
+
+/* cross types of the same law: springs and dashpots in series, lengths
+   averaged; two different laws do not mix (set the pair explicitly) */
+
+void PairSaltdemViscous::mix(int i, int j)
+{
+  auto series = [](double x, double y) { return (x + y > 0.0) ? 2.0 * x * y / (x + y) : 0.0; };
+  const auto &a = params[i][i];
+  const auto &b = params[j][j];
+  if (a.mode != b.mode)
+    error->all(FLERR,
+               "Pair style saltdem/viscous: types {} ({}) and {} ({}) use different laws and cannot "
+               "be mixed; add 'pair_coeff {} {} ...' (contact for a boundary)",
+               i, a.mode == SaltDEM::VISCOUS_FLUID ? "fluid" : "contact", j,
+               b.mode == SaltDEM::VISCOUS_FLUID ? "fluid" : "contact", i, j);
+  auto &p = params[i][j];
+  p = a;
+  p.eta = series(eta[i][i], eta[j][j]);
+  p.kn = series(a.kn, b.kn);
+  p.h = 0.5 * (a.h + b.h);
+  p.phi = 0.5 * (a.phi + b.phi);
+  p.ratio = 0.5 * (a.ratio + b.ratio);
+  p.gap = 0.5 * (a.gap + b.gap);
+  eta[i][j] = p.eta;
+}
+
+void PairSaltdemViscous::init_style()
+{
+  dim2 = (domain->dimension == 2);
+  volfac = dim2 ? M_PI : 4.0 * M_PI / 3.0;
+  PairSaltdem::init_style();
+}
+
+/* the viscosity may have been changed through extract("eta") since the
+   last run (fix adapt, fix saltdem/viscosity): derive the dashpots here */
+
+double PairSaltdemViscous::init_one(int i, int j)
+{
+  if (setflag[i][j]) params[i][j].eta = eta[i][j];
+  const double cut = PairSaltdem::init_one(i, j);
+  auto &p = params[i][j];
+  p.kfac = 2.0 * p.eta * SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
+  p.gn = calibration * p.eta;
+  p.gt = p.ratio * p.gn;
+  params[j][i] = p;
+  eta[j][i] = eta[i][j] = p.eta;
+  return cut;
+}
+
+/* Limits per type pair.  Elastic: dtfactor * sqrt(m/kn).  Viscous: an
+   explicit dashpot network is stable while dt < m / sum(gamma) for every
+   particle (Gershgorin).  FLUID: the kernel sums to sum(gamma) = 7 eta V / h^2
+   (2D and 3D), so dt < S m h^2 / (7 eta V) with V = disc volume / phi.
+   CONTACT: a disc's tangential dashpot also spins it (1/m + l^2/I = 3/m, 3.5/m
+   for a sphere), so dt < m / (g (1 + rot ratio)).  Both times viscfactor. */
+
+double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
+{
+  const int n = atom->ntypes;
+  // smallest inertial mass per unit disc volume per type
+  std::vector<double> local(n + 1, DBL_MAX), mv(n + 1);
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double s = inertia_scale(i);
+    const double r = atom->radius[i];
+    const double vol = volfac * (dim2 ? r * r : r * r * r);
+    if (s > 0.0 && vol > 0.0) local[atom->type[i]] = MIN(local[atom->type[i]], s * atom->rmass[i] / vol);
+  }
+  MPI_Allreduce(&local[1], &mv[1], n, MPI_DOUBLE, MPI_MIN, world);
+
+  const double rot = dim2 ? 3.0 : 3.5;
+  double best = DBL_MAX;
+  auto consider = [&](double lim, std::string &&reason) {
+    if (lim < best) {
+      best = lim;
+      why = reason;
+    }
+  };
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) {
+      if (!setflag[i][j]) mix(i, j);    // init_one() has not run yet
+      if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
+      const double m = MIN(mmin[i], mmin[j]);
+      const double e = eta[i][j];
+      const auto &p = params[i][j];
+      consider(dtfactor * sqrt(m / p.kn),
+               fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
+                           "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor));
+      double lim;
+      std::string formula;
+      if (p.mode == SaltDEM::VISCOUS_FLUID) {
+        lim = viscfactor * MIN(mv[i], mv[j]) * p.phi * p.h * p.h / (7.0 * e);
+        formula = fmt::format("dt < {} * S m h^2 / (7 eta V), h = {:.6g}", viscfactor, p.h);
+      } else {
+        lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio));
+        formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio))", viscfactor, rot);
+      }
+      consider(lim, fmt::format("eta = {:.6g} of types {} {} ({}); a larger dt needs a smaller eta "
+                                "or more inertia for the viscous discs ('fix saltdem/nve ... inertia "
+                                "S' with S >= {:.3g} times the present one)",
+                                e, i, j, formula, update->dt / lim));
+    }
+  return best == DBL_MAX ? 0.0 : best;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairSaltdemViscous::read_restart(FILE *fp)
+{
+  PairSaltdem::read_restart(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (setflag[i][j]) eta[i][j] = params[i][j].eta;
+}
+
+void PairSaltdemViscous::write_restart_settings(FILE *fp)
+{
+  fwrite(&calibration, sizeof(double), 1, fp);
+  fwrite(&dtfactor, sizeof(double), 1, fp);
+  fwrite(&viscfactor, sizeof(double), 1, fp);
+}
+
+void PairSaltdemViscous::read_restart_settings(FILE *fp)
+{
+  double buf[3];
+  if (comm->me == 0) utils::sfread(FLERR, buf, sizeof(double), 3, fp, nullptr, error);
+  MPI_Bcast(buf, 3, MPI_DOUBLE, 0, world);
+  calibration = buf[0];
+  dtfactor = buf[1];
+  viscfactor = buf[2];
+}
+
+/* "eta": per type pair viscosity (dim 2), read and changed by fix adapt and
+   fix saltdem/viscosity; "calibration": dashpot per unit viscosity */
+
+void *PairSaltdemViscous::extract(const char *str, int &dim)
+{
+  if (strcmp(str, "eta") == 0) {
+    dim = 2;
+    return (void *) eta;
+  }
+  dim = 0;
+  if (strcmp(str, "calibration") == 0) return (void *) &calibration;
+  return nullptr;
+}

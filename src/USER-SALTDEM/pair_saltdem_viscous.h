@@ -1,0 +1,73 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(saltdem/viscous,PairSaltdemViscous);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_SALTDEM_VISCOUS_H
+#define LMP_PAIR_SALTDEM_VISCOUS_H
+
+#include "pair_saltdem.h"
+
+namespace LAMMPS_NS {
+
+class PairSaltdemViscous : public PairSaltdem {
+ public:
+  PairSaltdemViscous(class LAMMPS *);
+  ~PairSaltdemViscous() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  double init_one(int, int) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  void *extract(const char *, int &) override;
+
+  // the force law, inlined into the shared pair loop
+  bool law(int i, int j, int itype, int jtype, const SaltDEM::Contact &c, double *, bool,
+           double *f, double *ti, double *tj, double &evdwl) const
+  {
+    const double *rad = atom->radius;
+    // particle volume: disc area (2D) or sphere volume (3D) over the packing fraction
+    const double vi = volfac * (dim2 ? rad[i] * rad[i] : rad[i] * rad[i] * rad[i]);
+    const double vj = volfac * (dim2 ? rad[j] * rad[j] : rad[j] * rad[j] * rad[j]);
+    const auto &p = params[itype][jtype];
+    return SaltDEM::viscous_force(p, c, vi / p.phi, vj / p.phi, f, ti, tj, evdwl);
+  }
+
+  // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
+  static constexpr double DEFAULT_CALIBRATION = 1.0;
+
+ protected:
+  SaltDEM::ViscousParams **params;
+  double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
+  double calibration;
+  double viscfactor;  // safety factor on the viscous stable dt
+  bool dim2;          // 2D: discs
+  double volfac;      // pi (2D) or 4 pi / 3 (3D)
+
+  void allocate_params(int) override;
+  void *pair_params(int i, int j) override { return &params[i][j]; }
+  size_t params_size() const override { return sizeof(SaltDEM::ViscousParams); }
+  void mix(int, int) override;
+  double range(int i, int j) const override
+  {
+    return params[i][j].mode == SaltDEM::VISCOUS_CONTACT ? params[i][j].gap : 0.0;
+  }
+  double range_abs(int i, int j) const override
+  {
+    return params[i][j].mode == SaltDEM::VISCOUS_FLUID ? 2.0 * params[i][j].h : 0.0;
+  }
+  void init_style() override;
+  double stable_dt(const double *, std::string &) override;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -38,6 +38,7 @@ class PairSaltdem : public Pair {
   void read_restart(FILE *) override;
   void transfer_history(double *, double *, int, int) override;
   double memory_usage() override;
+  virtual void pre_loop() {}    // per-step work before the pair loop (all threads joined)
 
   // the pair loop over [ifrom, ito) of the neighbour list, written once for
   // the serial and the threaded styles: law() is the derived style's inline

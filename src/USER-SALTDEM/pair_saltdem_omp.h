@@ -43,6 +43,7 @@ template <class Style> class PairSaltdemOMP : public Style, public ThrOMP {
   void compute(int eflag, int vflag) override
   {
     this->ev_init(eflag, vflag);
+    this->pre_loop();
     const int nall = this->atom->nlocal + this->atom->nghost;
     const int nthreads = this->comm->nthreads;
     const int inum = this->list->inum;

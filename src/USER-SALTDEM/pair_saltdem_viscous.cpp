@@ -20,9 +20,11 @@
 using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
-    PairSaltdem(lmp, nullptr), params(nullptr), eta(nullptr),
+    PairSaltdem(lmp, nullptr), params(nullptr), eta(nullptr), vol(nullptr), nmax(0), any_fluid(false),
     calibration(DEFAULT_CALIBRATION), viscfactor(0.5)
 {
+  comm_forward = 1;
+  comm_reverse = 1;
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -30,6 +32,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
   if (copymode) return;
   memory->destroy(params);
   memory->destroy(eta);
+  memory->destroy(vol);
 }
 
 void PairSaltdemViscous::allocate_params(int n)
@@ -41,6 +44,7 @@ void PairSaltdemViscous::allocate_params(int n)
 void PairSaltdemViscous::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
+  pre_loop();
   auto tally = [this](int i, int j, double e, double fx, double fy, double fz, double dx,
                       double dy, double dz) {
     ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
@@ -80,13 +84,12 @@ void PairSaltdemViscous::settings(int narg, char **arg)
   }
 }
 
-/* pair_coeff I J eta kn fluid h [phi P]
+/* pair_coeff I J eta kn fluid h
    pair_coeff I J eta kn contact gap [tangential ratio] */
 
 void PairSaltdemViscous::coeff(int narg, char **arg)
 {
-  const char *usage =
-      "pair_coeff I J eta kn fluid h [phi P]  or  pair_coeff I J eta kn contact gap [tangential R]";
+  const char *usage = "pair_coeff I J eta kn fluid h  or  pair_coeff I J eta kn contact gap [tangential R]";
   if (narg < 6)
     error->all(FLERR, "Pair style saltdem/viscous: pair_coeff needs 6 or more arguments, got {}: {}",
                narg, usage);
@@ -98,7 +101,6 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
   p.kn = utils::numeric(FLERR, arg[3], false, lmp);
   if (p.eta <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: eta = {} must be > 0", p.eta);
   if (p.kn <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: kn = {} must be > 0", p.kn);
-  p.phi = 0.84;
   p.ratio = 1.0;
 
   std::string kw = arg[4];
@@ -107,29 +109,23 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
     p.mode = SaltDEM::VISCOUS_FLUID;
     p.h = utils::numeric(FLERR, arg[5], false, lmp);
     if (p.h <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid h = {} must be > 0", p.h);
-    opt = "phi";
+    if (narg != 6)
+      error->all(FLERR, "Pair style saltdem/viscous: unexpected arguments after 'fluid {}'; usage: {}",
+                 arg[5], usage);
   } else if (kw == "contact") {
     p.mode = SaltDEM::VISCOUS_CONTACT;
     p.gap = utils::numeric(FLERR, arg[5], false, lmp);
     if (p.gap < 0.0) error->all(FLERR, "Pair style saltdem/viscous: contact gap = {} must be >= 0", p.gap);
-    opt = "tangential";
+    if (narg == 8 && strcmp(arg[6], "tangential") == 0) {
+      p.ratio = utils::numeric(FLERR, arg[7], false, lmp);
+      if (p.ratio < 0.0)
+        error->all(FLERR, "Pair style saltdem/viscous: tangential ratio = {} must be >= 0", p.ratio);
+    } else if (narg != 6)
+      error->all(FLERR, "Pair style saltdem/viscous: unexpected arguments after 'contact {}' "
+                 "(allowed: tangential R); usage: {}", arg[5], usage);
   } else
     error->all(FLERR, "Pair style saltdem/viscous: unknown law '{}' (expected fluid or contact); usage: {}",
                kw, usage);
-
-  if (narg == 8 && opt == arg[6]) {
-    const double v = utils::numeric(FLERR, arg[7], false, lmp);
-    if (opt == "phi") {
-      if (v <= 0.0 || v > 1.0)
-        error->all(FLERR, "Pair style saltdem/viscous: phi = {} must be in (0, 1]", v);
-      p.phi = v;
-    } else {
-      if (v < 0.0) error->all(FLERR, "Pair style saltdem/viscous: tangential ratio = {} must be >= 0", v);
-      p.ratio = v;
-    }
-  } else if (narg != 6)
-    error->all(FLERR, "Pair style saltdem/viscous: unexpected arguments after '{} {}' (allowed: {} value); usage: {}",
-               kw, arg[5], opt, usage);
 
   int count = 0;
   for (int i = ilo; i <= ihi; i++)
@@ -161,7 +157,6 @@ void PairSaltdemViscous::mix(int i, int j)
   p.eta = series(eta[i][i], eta[j][j]);
   p.kn = series(a.kn, b.kn);
   p.h = 0.5 * (a.h + b.h);
-  p.phi = 0.5 * (a.phi + b.phi);
   p.ratio = 0.5 * (a.ratio + b.ratio);
   p.gap = 0.5 * (a.gap + b.gap);
   eta[i][j] = p.eta;
@@ -171,7 +166,77 @@ void PairSaltdemViscous::init_style()
 {
   dim2 = (domain->dimension == 2);
   volfac = dim2 ? M_PI : 4.0 * M_PI / 3.0;
+  any_fluid = false;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID) any_fluid = true;
   PairSaltdem::init_style();
+}
+
+/* FLUID volumes: V_i = 1 / sum_j W(r_ij), self included, over the FLUID
+   pairs; summed over ghosts with newton on, then sent to the ghosts */
+
+void PairSaltdemViscous::pre_loop()
+{
+  if (!any_fluid) return;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  if (atom->nmax > nmax) {
+    memory->destroy(vol);
+    nmax = atom->nmax;
+    memory->create(vol, nmax, "pair:vol");
+  }
+  double **x = atom->x;
+  int *type = atom->type;
+  const int dim = domain->dimension;
+  const int newton_pair = force->newton_pair;
+  for (int i = 0; i < nall; i++) {
+    const auto &p = params[type[i]][type[i]];
+    vol[i] = (i < nlocal && p.mode == SaltDEM::VISCOUS_FLUID) ? SaltDEM::wendland_c2(dim, p.h, 0.0) : 0.0;
+  }
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const auto &p = params[type[i]][type[j]];
+      if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
+      const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+      const double w = SaltDEM::wendland_c2(dim, p.h, sqrt(dx * dx + dy * dy + dz * dz));
+      vol[i] += w;
+      if (newton_pair || j < nlocal) vol[j] += w;
+    }
+  }
+  if (newton_pair) comm->reverse_comm(this);
+  for (int i = 0; i < nlocal; i++) vol[i] = (vol[i] > 0.0) ? 1.0 / vol[i] : 0.0;
+  comm->forward_comm(this);
+}
+
+int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, int *)
+{
+  for (int i = 0; i < n; i++) buf[i] = vol[list[i]];
+  return n;
+}
+
+void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
+{
+  for (int i = 0; i < n; i++) vol[first + i] = buf[i];
+}
+
+int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
+{
+  for (int i = 0; i < n; i++) buf[i] = vol[first + i];
+  return n;
+}
+
+void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  for (int i = 0; i < n; i++) vol[list[i]] += buf[i];
+}
+
+double PairSaltdemViscous::memory_usage()
+{
+  return PairSaltdem::memory_usage() + (double) nmax * sizeof(double);
 }
 
 /* the viscosity may have been changed through extract("eta") since the
@@ -193,7 +258,7 @@ double PairSaltdemViscous::init_one(int i, int j)
 /* Limits per type pair.  Elastic: dtfactor * sqrt(m/kn).  Viscous: an
    explicit dashpot network is stable while dt < m / sum(gamma) for every
    particle (Gershgorin).  FLUID: the kernel sums to sum(gamma) = 7 eta V / h^2
-   (2D and 3D), so dt < S m h^2 / (7 eta V) with V = disc volume / phi.
+   (2D and 3D), so dt < S m h^2 / (7 eta V).
    CONTACT: a disc's tangential dashpot also spins it (1/m + l^2/I = 3/m, 3.5/m
    for a sphere), so dt < m / (g (1 + rot ratio)).  Both times viscfactor. */
 
@@ -231,8 +296,10 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
       double lim;
       std::string formula;
       if (p.mode == SaltDEM::VISCOUS_FLUID) {
-        lim = viscfactor * MIN(mv[i], mv[j]) * p.phi * p.h * p.h / (7.0 * e);
-        formula = fmt::format("dt < {} * S m h^2 / (7 eta V), h = {:.6g}", viscfactor, p.h);
+        // V = 1/sum W is not known before the first step: bound it by the
+        // disc volume over a packing fraction of 0.7
+        lim = viscfactor * MIN(mv[i], mv[j]) * 0.7 * p.h * p.h / (7.0 * e);
+        formula = fmt::format("dt < {} * S m h^2 / (7 eta V), V = disc/0.7, h = {:.6g}", viscfactor, p.h);
       } else {
         lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio));
         formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio))", viscfactor, rot);

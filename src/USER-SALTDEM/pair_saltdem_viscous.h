@@ -27,17 +27,18 @@ class PairSaltdemViscous : public PairSaltdem {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
+  void pre_loop() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+  double memory_usage() override;
 
   // the force law, inlined into the shared pair loop
   bool law(int i, int j, int itype, int jtype, const SaltDEM::Contact &c, double *, bool,
            double *f, double *ti, double *tj, double &evdwl) const
   {
-    const double *rad = atom->radius;
-    // particle volume: disc area (2D) or sphere volume (3D) over the packing fraction
-    const double vi = volfac * (dim2 ? rad[i] * rad[i] : rad[i] * rad[i] * rad[i]);
-    const double vj = volfac * (dim2 ? rad[j] * rad[j] : rad[j] * rad[j] * rad[j]);
-    const auto &p = params[itype][jtype];
-    return SaltDEM::viscous_force(p, c, vi / p.phi, vj / p.phi, f, ti, tj, evdwl);
+    return SaltDEM::viscous_force(params[itype][jtype], c, vol[i], vol[j], f, ti, tj, evdwl);
   }
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
@@ -46,6 +47,9 @@ class PairSaltdemViscous : public PairSaltdem {
  protected:
   SaltDEM::ViscousParams **params;
   double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
+  double *vol;        // FLUID: particle volume 1 / sum_j W_ij, owned and ghost atoms
+  int nmax;           // allocated length of vol
+  bool any_fluid;     // some type pair uses the FLUID law
   double calibration;
   double viscfactor;  // safety factor on the viscous stable dt
   bool dim2;          // 2D: discs

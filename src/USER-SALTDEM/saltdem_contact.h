@@ -228,10 +228,11 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
    Two forms, chosen per type pair:
    - FLUID (salt-salt): the Morris et al. (1997) SPH viscosity, a dashpot on
      the full relative velocity whose coefficient is a smooth kernel of the
-     distance, summed over all neighbours within 2h.  It discretises
-     eta * laplacian(v), so the emergent viscosity is eta itself, and it is
+     distance, summed over all neighbours within 2h, with particle volumes
+     V = 1/sum_j W from the kernel itself.  It discretises eta * laplacian(v),
+     so the emergent viscosity is eta whatever the local packing, and it is
      linear in the velocities: Newtonian by construction.  Elastic repulsion
-     of touching discs carries the load.
+     of touching discs (with a lubrication dashpot) carries the load.
    - CONTACT (boundaries: salt-wall, cover-salt, cover-wall): elastic
      repulsion plus normal and tangential dashpots at the contact point,
      within a small gap; a stiff tangential dashpot makes the interface
@@ -245,23 +246,32 @@ struct ViscousParams {
   double eta;       // dynamic viscosity (Pa s)
   double kn;        // elastic normal stiffness (force/length)
   double h;         // FLUID: smoothing length; the kernel reaches 2h
-  double phi;       // FLUID: packing fraction: particle volume = disc volume / phi
   double kfac;      // FLUID: 2 eta * kernel constant (derived: dimension, h)
   double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
   double ratio;     // CONTACT: tangential / normal dashpot coefficient
   double gn, gt;    // CONTACT: dashpot coefficients (derived: calibration * eta)
 };
 
-/* Wendland C2 kernel: |dW/dr| / r = C (1 - r/2h)^3 with C = 35/(4 pi h^4)
-   in 2D and 105/(16 pi h^5) in 3D */
+/* Wendland C2 kernel W(q = r/h) = A (1 - q/2)^4 (1 + 2q) on r < 2h, with
+   A = 7/(4 pi h^2) in 2D and 21/(16 pi h^3) in 3D */
+inline double wendland_c2(int dimension, double h, double r)
+{
+  const double q = r / h;
+  if (q >= 2.0) return 0.0;
+  const double s = 1.0 - 0.5 * q;
+  const double a = (dimension == 2) ? 7.0 / (4.0 * M_PI * h * h) : 21.0 / (16.0 * M_PI * h * h * h);
+  return a * s * s * s * s * (1.0 + 2.0 * q);
+}
+
+/* and its |dW/dr| / r = C (1 - r/2h)^3 with C = 35/(4 pi h^4) in 2D and
+   105/(16 pi h^5) in 3D */
 inline double wendland_c2_grad_over_r(int dimension, double h)
 {
   return (dimension == 2) ? 35.0 / (4.0 * M_PI * h * h * h * h)
                           : 105.0 / (16.0 * M_PI * h * h * h * h * h);
 }
 
-/* vi, vj: particle volumes (disc area / phi in 2D).  Returns true while
-   the discs touch. */
+/* voli, volj: particle volumes (FLUID).  Returns true while the discs touch. */
 inline bool viscous_force(const ViscousParams &p, const Contact &c, double voli, double volj,
                           double *f, double *ti, double *tj, double &evdwl)
 {
@@ -271,7 +281,10 @@ inline bool viscous_force(const ViscousParams &p, const Contact &c, double voli,
   if (p.mode == VISCOUS_FLUID) {
     const double s = 1.0 - 0.5 * c.r / p.h;
     const double g = (s > 0.0) ? p.kfac * voli * volj * s * s * s : 0.0;
-    for (int k = 0; k < 3; k++) f[k] = fel * c.n[k] - g * c.vr[k];
+    // touching discs also get a normal (lubrication) dashpot gn: without it
+    // they bounce, and the collisions add an inertial, shear-thickening stress
+    const double fn = touching ? fel - p.gn * c.vn : 0.0;
+    for (int k = 0; k < 3; k++) f[k] = fn * c.n[k] - g * c.vr[k];
     ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
     return touching;
   }

@@ -20,10 +20,11 @@
 using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
-    PairSaltdem(lmp, nullptr), params(nullptr), eta(nullptr), vol(nullptr), nmax(0), any_fluid(false),
+    PairSaltdem(lmp, nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), isfluid(nullptr), nmax(0),
+    any_fluid(false),
     calibration(DEFAULT_CALIBRATION), viscfactor(0.5)
 {
-  comm_forward = 1;
+  comm_forward = 2;
   comm_reverse = 1;
 }
 
@@ -33,12 +34,16 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(params);
   memory->destroy(eta);
   memory->destroy(vol);
+  memory->destroy(apress);
+  memory->destroy(rho);
+  memory->destroy(isfluid);
 }
 
 void PairSaltdemViscous::allocate_params(int n)
 {
   memory->create(params, n + 1, n + 1, "pair:params");
   memory->create(eta, n + 1, n + 1, "pair:eta");
+  memory->create(isfluid, n + 1, "pair:isfluid");
 }
 
 void PairSaltdemViscous::compute(int eflag, int vflag)
@@ -89,7 +94,8 @@ void PairSaltdemViscous::settings(int narg, char **arg)
 
 void PairSaltdemViscous::coeff(int narg, char **arg)
 {
-  const char *usage = "pair_coeff I J eta kn fluid h  or  pair_coeff I J eta kn contact gap [tangential R]";
+  const char *usage =
+      "pair_coeff I J eta kn fluid h K  or  pair_coeff I J eta kn contact gap [tangential R]";
   if (narg < 6)
     error->all(FLERR, "Pair style saltdem/viscous: pair_coeff needs 6 or more arguments, got {}: {}",
                narg, usage);
@@ -109,9 +115,11 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
     p.mode = SaltDEM::VISCOUS_FLUID;
     p.h = utils::numeric(FLERR, arg[5], false, lmp);
     if (p.h <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid h = {} must be > 0", p.h);
-    if (narg != 6)
-      error->all(FLERR, "Pair style saltdem/viscous: unexpected arguments after 'fluid {}'; usage: {}",
-                 arg[5], usage);
+    if (narg != 7)
+      error->all(FLERR, "Pair style saltdem/viscous: 'fluid' takes h and K, got {} values; usage: {}",
+                 narg - 5, usage);
+    p.K = utils::numeric(FLERR, arg[6], false, lmp);
+    if (p.K < 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid K = {} must be >= 0", p.K);
   } else if (kw == "contact") {
     p.mode = SaltDEM::VISCOUS_CONTACT;
     p.gap = utils::numeric(FLERR, arg[5], false, lmp);
@@ -157,6 +165,8 @@ void PairSaltdemViscous::mix(int i, int j)
   p.eta = series(eta[i][i], eta[j][j]);
   p.kn = series(a.kn, b.kn);
   p.h = 0.5 * (a.h + b.h);
+  p.K = sqrt(a.K * b.K);
+  p.rho0 = 0.0;
   p.ratio = 0.5 * (a.ratio + b.ratio);
   p.gap = 0.5 * (a.gap + b.gap);
   eta[i][j] = p.eta;
@@ -167,14 +177,18 @@ void PairSaltdemViscous::init_style()
   dim2 = (domain->dimension == 2);
   volfac = dim2 ? M_PI : 4.0 * M_PI / 3.0;
   any_fluid = false;
-  for (int i = 1; i <= atom->ntypes; i++)
+  for (int i = 1; i <= atom->ntypes; i++) {
+    isfluid[i] = (params[i][i].mode == SaltDEM::VISCOUS_FLUID && params[i][i].K > 0.0) ? 1 : 0;
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID) any_fluid = true;
+  }
   PairSaltdem::init_style();
 }
 
-/* FLUID volumes: V_i = 1 / sum_j W(r_ij), self included, over the FLUID
-   pairs; summed over ghosts with newton on, then sent to the ghosts */
+/* FLUID: kernel density rho_i = sum_j m_j W(r_ij), self included, over
+   the FLUID pairs (summed over ghosts with newton on); then the volume
+   m/rho, the pressure P = K (rho/rho0 - 1) and a = m P / rho^2, sent to the
+   ghosts.  rho0 of each fluid type is its mean density at the first step. */
 
 void PairSaltdemViscous::pre_loop()
 {
@@ -183,16 +197,21 @@ void PairSaltdemViscous::pre_loop()
   const int nall = nlocal + atom->nghost;
   if (atom->nmax > nmax) {
     memory->destroy(vol);
+    memory->destroy(apress);
+    memory->destroy(rho);
     nmax = atom->nmax;
     memory->create(vol, nmax, "pair:vol");
+    memory->create(apress, nmax, "pair:apress");
+    memory->create(rho, nmax, "pair:rho");
   }
   double **x = atom->x;
+  double *m = atom->rmass;
   int *type = atom->type;
   const int dim = domain->dimension;
   const int newton_pair = force->newton_pair;
   for (int i = 0; i < nall; i++) {
     const auto &p = params[type[i]][type[i]];
-    vol[i] = (i < nlocal && p.mode == SaltDEM::VISCOUS_FLUID) ? SaltDEM::wendland_c2(dim, p.h, 0.0) : 0.0;
+    rho[i] = (i < nlocal && p.mode == SaltDEM::VISCOUS_FLUID) ? m[i] * SaltDEM::wendland_c2(dim, p.h, 0.0) : 0.0;
   }
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -203,40 +222,76 @@ void PairSaltdemViscous::pre_loop()
       if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
       const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
       const double w = SaltDEM::wendland_c2(dim, p.h, sqrt(dx * dx + dy * dy + dz * dz));
-      vol[i] += w;
-      if (newton_pair || j < nlocal) vol[j] += w;
+      rho[i] += m[j] * w;
+      if (newton_pair || j < nlocal) rho[j] += m[i] * w;
     }
   }
   if (newton_pair) comm->reverse_comm(this);
-  for (int i = 0; i < nlocal; i++) vol[i] = (vol[i] > 0.0) ? 1.0 / vol[i] : 0.0;
+
+  // reference density of each fluid type, once
+  const int nt = atom->ntypes;
+  bool need = false;
+  for (int t = 1; t <= nt; t++)
+    if (isfluid[t] && params[t][t].rho0 <= 0.0) need = true;
+  if (need) {
+    std::vector<double> sum(2 * (nt + 1), 0.0), all(2 * (nt + 1));
+    for (int i = 0; i < nlocal; i++) {
+      sum[2 * type[i]] += rho[i];
+      sum[2 * type[i] + 1] += 1.0;
+    }
+    MPI_Allreduce(sum.data(), all.data(), 2 * (nt + 1), MPI_DOUBLE, MPI_SUM, world);
+    for (int t = 1; t <= nt; t++)
+      if (isfluid[t] && params[t][t].rho0 <= 0.0 && all[2 * t + 1] > 0.0) {
+        params[t][t].rho0 = all[2 * t] / all[2 * t + 1];
+        if (comm->me == 0)
+          utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.6g}\n",
+                         t, params[t][t].rho0);
+      }
+  }
+
+  for (int i = 0; i < nlocal; i++) {
+    const auto &p = params[type[i]][type[i]];
+    vol[i] = (rho[i] > 0.0) ? m[i] / rho[i] : 0.0;
+    apress[i] = (isfluid[type[i]] && p.rho0 > 0.0)
+        ? m[i] * p.K * (rho[i] / p.rho0 - 1.0) / (rho[i] * rho[i])
+        : 0.0;
+  }
   comm->forward_comm(this);
 }
 
 int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, int *)
 {
-  for (int i = 0; i < n; i++) buf[i] = vol[list[i]];
-  return n;
+  int k = 0;
+  for (int i = 0; i < n; i++) {
+    buf[k++] = vol[list[i]];
+    buf[k++] = apress[list[i]];
+  }
+  return k;
 }
 
 void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
 {
-  for (int i = 0; i < n; i++) vol[first + i] = buf[i];
+  int k = 0;
+  for (int i = first; i < first + n; i++) {
+    vol[i] = buf[k++];
+    apress[i] = buf[k++];
+  }
 }
 
 int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
 {
-  for (int i = 0; i < n; i++) buf[i] = vol[first + i];
+  for (int i = 0; i < n; i++) buf[i] = rho[first + i];
   return n;
 }
 
 void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  for (int i = 0; i < n; i++) vol[list[i]] += buf[i];
+  for (int i = 0; i < n; i++) rho[list[i]] += buf[i];
 }
 
 double PairSaltdemViscous::memory_usage()
 {
-  return PairSaltdem::memory_usage() + (double) nmax * sizeof(double);
+  return PairSaltdem::memory_usage() + 3.0 * nmax * sizeof(double);
 }
 
 /* the viscosity may have been changed through extract("eta") since the
@@ -247,7 +302,8 @@ double PairSaltdemViscous::init_one(int i, int j)
   if (setflag[i][j]) params[i][j].eta = eta[i][j];
   const double cut = PairSaltdem::init_one(i, j);
   auto &p = params[i][j];
-  p.kfac = 2.0 * p.eta * SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
+  p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
+  p.kfac = 2.0 * p.eta * p.cw;
   p.gn = calibration * p.eta;
   p.gt = p.ratio * p.gn;
   params[j][i] = p;
@@ -300,6 +356,14 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
         // disc volume over a packing fraction of 0.7
         lim = viscfactor * MIN(mv[i], mv[j]) * 0.7 * p.h * p.h / (7.0 * e);
         formula = fmt::format("dt < {} * S m h^2 / (7 eta V), V = disc/0.7, h = {:.6g}", viscfactor, p.h);
+        // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
+        if (p.K > 0.0) {
+          const double c = sqrt(p.K / (0.7 * MIN(mv[i], mv[j])));
+          consider(0.25 * p.h / c,
+                   fmt::format("K = {:.6g} of types {} {} (sound speed {:.4g} with the inertial "
+                               "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
+                               "K or more inertia", p.K, i, j, c, p.h));
+        }
       } else {
         lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio));
         formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio))", viscfactor, rot);

@@ -38,7 +38,17 @@ class PairSaltdemViscous : public PairSaltdem {
   bool law(int i, int j, int itype, int jtype, const SaltDEM::Contact &c, double *, bool,
            double *f, double *ti, double *tj, double &evdwl) const
   {
-    return SaltDEM::viscous_force(params[itype][jtype], c, vol[i], vol[j], f, ti, tj, evdwl);
+    // SPH pressure m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) with a_i = m_i P_i / rho_i^2;
+    // a particle that is not fluid (wall, cover) mirrors the fluid's pressure
+    const double *m = atom->rmass;
+    double pc = 0.0;
+    if (isfluid[itype] && isfluid[jtype])
+      pc = m[j] * apress[i] + m[i] * apress[j];
+    else if (isfluid[itype])
+      pc = 2.0 * m[j] * apress[i];
+    else if (isfluid[jtype])
+      pc = 2.0 * m[i] * apress[j];
+    return SaltDEM::viscous_force(params[itype][jtype], c, vol[i], vol[j], pc, f, ti, tj, evdwl);
   }
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
@@ -47,7 +57,10 @@ class PairSaltdemViscous : public PairSaltdem {
  protected:
   SaltDEM::ViscousParams **params;
   double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
-  double *vol;        // FLUID: particle volume 1 / sum_j W_ij, owned and ghost atoms
+  double *vol;        // FLUID: particle volume m / rho, owned and ghost atoms
+  double *apress;     // FLUID: m P / rho^2 per atom (pressure term), owned and ghost atoms
+  double *rho;        // FLUID: kernel density sum_j m_j W_ij, owned atoms
+  int *isfluid;       // per type: its own pair is FLUID with K > 0 (carries pressure)
   int nmax;           // allocated length of vol
   bool any_fluid;     // some type pair uses the FLUID law
   double calibration;

@@ -232,7 +232,7 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
      V = 1/sum_j W from the kernel itself.  It discretises eta * laplacian(v),
      so the emergent viscosity is eta whatever the local packing, and it is
      linear in the velocities: Newtonian by construction.  Elastic repulsion
-     of touching discs (with a lubrication dashpot) carries the load.
+     of touching discs carries the load.
    - CONTACT (boundaries: salt-wall, cover-salt, cover-wall): elastic
      repulsion plus normal and tangential dashpots at the contact point,
      within a small gap; a stiff tangential dashpot makes the interface
@@ -246,6 +246,9 @@ struct ViscousParams {
   double eta;       // dynamic viscosity (Pa s)
   double kn;        // elastic normal stiffness (force/length)
   double h;         // FLUID: smoothing length; the kernel reaches 2h
+  double K;         // FLUID: bulk modulus of the equation of state P = K (rho/rho0 - 1)
+  double rho0;      // FLUID (I,I only): reference kernel density, taken at the first step
+  double cw;        // FLUID: |dW/dr| / r = cw (1 - r/2h)^3 (derived)
   double kfac;      // FLUID: 2 eta * kernel constant (derived: dimension, h)
   double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
   double ratio;     // CONTACT: tangential / normal dashpot coefficient
@@ -271,19 +274,21 @@ inline double wendland_c2_grad_over_r(int dimension, double h)
                           : 105.0 / (16.0 * M_PI * h * h * h * h * h);
 }
 
-/* voli, volj: particle volumes (FLUID).  Returns true while the discs touch. */
+/* voli, volj: particle volumes m/rho (FLUID); pc: the SPH pressure pair
+   coefficient m_i m_j (P_i/rho_i^2 + P_j/rho_j^2).  Returns true while the
+   discs touch. */
 inline bool viscous_force(const ViscousParams &p, const Contact &c, double voli, double volj,
-                          double *f, double *ti, double *tj, double &evdwl)
+                          double pc, double *f, double *ti, double *tj, double &evdwl)
 {
   const bool touching = c.delta > 0.0;
   const double fel = touching ? p.kn * c.delta : 0.0;
   evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
   if (p.mode == VISCOUS_FLUID) {
     const double s = 1.0 - 0.5 * c.r / p.h;
-    const double g = (s > 0.0) ? p.kfac * voli * volj * s * s * s : 0.0;
-    // touching discs also get a normal (lubrication) dashpot gn: without it
-    // they bounce, and the collisions add an inertial, shear-thickening stress
-    const double fn = touching ? fel - p.gn * c.vn : 0.0;
+    const double s3 = (s > 0.0) ? s * s * s : 0.0;
+    const double g = p.kfac * voli * volj * s3;    // Morris viscosity
+    // pressure: -pc grad W, repulsive for P > 0
+    const double fn = pc * p.cw * s3 * c.r + fel;
     for (int k = 0; k < 3; k++) f[k] = fn * c.n[k] - g * c.vr[k];
     ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
     return touching;

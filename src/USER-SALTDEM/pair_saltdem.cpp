@@ -19,8 +19,8 @@ using namespace LAMMPS_NS;
 
 /* ---------------------------------------------------------------------- */
 
-PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *history_id) :
-    Pair(lmp), hist_id(history_id), fix_dummy(nullptr), fix_history(nullptr), fix_rebuild(nullptr),
+PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
+    Pair(lmp), name(style_name), hist_id(history_id), fix_dummy(nullptr), fix_history(nullptr), fix_rebuild(nullptr),
     transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr),
     reach_abs(nullptr), dtfactor(0.2)
 {
@@ -92,11 +92,11 @@ void PairSaltdem::init_style()
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
     error->all(FLERR,
                "Pair style {} requires per-atom radius, rmass and omega: use 'atom_style sphere'",
-               force->pair_style);
+               name);
   if (comm->ghost_velocity == 0)
     error->all(FLERR,
                "Pair style {} needs the velocities of ghost atoms: add 'comm_modify vel yes'",
-               force->pair_style);
+               name);
 
   // history needs the size list (it flags touching pairs); a law without
   // history uses the plain list, whose cutoff (init_one) may reach far
@@ -133,7 +133,7 @@ void PairSaltdem::init_style()
     error->all(FLERR,
                "Pair style {}: timestep {:.6g} exceeds the stable limit {:.6g} set by {}. "
                "Use 'timestep {:.3g}' or smaller, or change the parameter named",
-               force->pair_style, update->dt, dtmax, why, 0.99 * dtmax);
+               name, update->dt, dtmax, why, 0.99 * dtmax);
 }
 
 /* smallest mass per type that the integrator sees: rmass times the inertia
@@ -188,7 +188,7 @@ double PairSaltdem::init_one(int i, int j)
     error->all(FLERR,
                "Pair style {}: interaction range {:.6g} beyond contact for types {} {} is not "
                "smaller than the neighbor skin {:.6g}; use e.g. 'neighbor {:.3g} bin'",
-               force->pair_style, extra[i][j], i, j, neighbor->skin, 4.0 * extra[i][j]);
+               name, extra[i][j], i, j, neighbor->skin, 4.0 * extra[i][j]);
 
   return MAX(maxrad[i] + maxrad[j] + extra[i][j], reach_abs[i][j]);
 }

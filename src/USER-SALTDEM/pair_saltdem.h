@@ -29,7 +29,7 @@ namespace LAMMPS_NS {
 
 class PairSaltdem : public Pair {
  public:
-  PairSaltdem(class LAMMPS *, const char *history_id);
+  PairSaltdem(class LAMMPS *, const char *style_name, const char *history_id);
   ~PairSaltdem() override;
 
   void init_style() override;
@@ -48,6 +48,7 @@ class PairSaltdem : public Pair {
   void loop(Derived *self, int ifrom, int ito, double **f, double **torque, Tally &&tally);
 
  protected:
+  const char *name;            // style name for messages (force->pair_style may be hybrid)
   const char *hist_id;         // id stem of the FixNeighHistory (nullptr: law has no history)
   int history, size_history;   // values kept per touching pair
   class FixDummy *fix_dummy;

@@ -14,13 +14,14 @@
 #include "memory.h"
 
 #include <cfloat>
+#include <cstring>
 
 using namespace LAMMPS_NS;
 
 /* ---------------------------------------------------------------------- */
 
 PairSaltdemCohesive::PairSaltdemCohesive(LAMMPS *lmp) :
-    PairSaltdem(lmp, "SALTDEM_COHESIVE_HISTORY"), params(nullptr), rolling(false), dt(0.0)
+    PairSaltdem(lmp, "saltdem/cohesive", "SALTDEM_COHESIVE_HISTORY"), params(nullptr), rolling(false), dt(0.0)
 {
   size_history = 3;
 }
@@ -34,6 +35,7 @@ PairSaltdemCohesive::~PairSaltdemCohesive()
 void PairSaltdemCohesive::allocate_params(int n)
 {
   memory->create(params, n + 1, n + 1, "pair:params");
+  memset(&params[0][0], 0, sizeof(SaltDEM::CohesiveParams) * (n + 1) * (n + 1));
 }
 
 /* ---------------------------------------------------------------------- */
@@ -195,7 +197,10 @@ double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
   double best = DBL_MAX;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
-      if (!setflag[i][j]) mix(i, j);    // init_one() has not run yet
+      if (!setflag[i][j]) {
+        if (!setflag[i][i] || !setflag[j][j]) continue;    // another hybrid sub-style's pair
+        mix(i, j);                                          // init_one() has not run yet
+      }
       if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
       const auto &p = params[i][j];
       const double m = MIN(mmin[i], mmin[j]);

@@ -16,11 +16,12 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 
 using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
-    PairSaltdem(lmp, nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), isfluid(nullptr), nmax(0),
+    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), isfluid(nullptr), nmax(0),
     any_fluid(false),
     calibration(DEFAULT_CALIBRATION), viscfactor(0.5)
 {
@@ -42,6 +43,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
 void PairSaltdemViscous::allocate_params(int n)
 {
   memory->create(params, n + 1, n + 1, "pair:params");
+  memset(&params[0][0], 0, sizeof(SaltDEM::ViscousParams) * (n + 1) * (n + 1));
   memory->create(eta, n + 1, n + 1, "pair:eta");
   memory->create(isfluid, n + 1, "pair:isfluid");
 }
@@ -178,7 +180,8 @@ void PairSaltdemViscous::init_style()
   volfac = dim2 ? M_PI : 4.0 * M_PI / 3.0;
   any_fluid = false;
   for (int i = 1; i <= atom->ntypes; i++) {
-    isfluid[i] = (params[i][i].mode == SaltDEM::VISCOUS_FLUID && params[i][i].K > 0.0) ? 1 : 0;
+    // (under pair hybrid, types of other sub-styles have no coefficients here)
+    isfluid[i] = (setflag[i][i] && params[i][i].mode == SaltDEM::VISCOUS_FLUID && params[i][i].K > 0.0) ? 1 : 0;
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID) any_fluid = true;
   }
@@ -210,8 +213,11 @@ void PairSaltdemViscous::pre_loop()
   const int dim = domain->dimension;
   const int newton_pair = force->newton_pair;
   for (int i = 0; i < nall; i++) {
-    const auto &p = params[type[i]][type[i]];
-    rho[i] = (i < nlocal && p.mode == SaltDEM::VISCOUS_FLUID) ? m[i] * SaltDEM::wendland_c2(dim, p.h, 0.0) : 0.0;
+    const int t = type[i];
+    const auto &p = params[t][t];
+    rho[i] = (i < nlocal && setflag[t][t] && p.mode == SaltDEM::VISCOUS_FLUID)
+        ? m[i] * SaltDEM::wendland_c2(dim, p.h, 0.0)
+        : 0.0;
   }
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -249,9 +255,17 @@ void PairSaltdemViscous::pre_loop()
       }
   }
 
+  // a boundary particle (wall, cover) has no meaningful kernel density of
+  // its own: it gets the volume it would have at the fluid's reference density
+  double rhob = 0.0;
+  for (int t = 1; t <= nt; t++)
+    if (isfluid[t]) rhob = MAX(rhob, params[t][t].rho0);
   for (int i = 0; i < nlocal; i++) {
     const auto &p = params[type[i]][type[i]];
-    vol[i] = (rho[i] > 0.0) ? m[i] / rho[i] : 0.0;
+    if (isfluid[type[i]])
+      vol[i] = (rho[i] > 0.0) ? m[i] / rho[i] : 0.0;
+    else
+      vol[i] = (rhob > 0.0) ? m[i] / rhob : 0.0;
     apress[i] = (isfluid[type[i]] && p.rho0 > 0.0)
         ? m[i] * p.K * (rho[i] / p.rho0 - 1.0) / (rho[i] * rho[i])
         : 0.0;
@@ -341,7 +355,10 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
   };
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) {
-      if (!setflag[i][j]) mix(i, j);    // init_one() has not run yet
+      if (!setflag[i][j]) {
+        if (!setflag[i][i] || !setflag[j][j]) continue;    // another hybrid sub-style's pair
+        mix(i, j);                                          // init_one() has not run yet
+      }
       if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
       const double m = MIN(mmin[i], mmin[j]);
       const double e = eta[i][j];

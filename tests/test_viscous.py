@@ -1,0 +1,633 @@
+"""Tests of pair_style saltdem/viscous and fix saltdem/nve
+(src/USER-SALTDEM/pair_saltdem_viscous.*, fix_saltdem_nve.*, law in
+saltdem_contact.h: viscous_force).
+
+The salt is a linear Newtonian fluid of viscosity eta.  Its discs interact by
+the Morris SPH viscosity (Wendland C2 kernel, support 2h, volumes m/rho from a
+kernel-density pass), an SPH pressure P = K (rho/rho0 - 1) and a soft elastic
+hard core kn; they are integrated by fix saltdem/nve with an inertia factor S
+(forces divided by S m).  The flows run in tests/decks/channel.in: a random
+dense pack of the paper's discs (tools/pack.in, W 1000 m x H 500 m, radii
+6.25-15.625 m), x periodic, between two no-slip wall bands of 2 rmax.
+
+  plane Couette (top band moves at V):  tau = eta_eff * dv/dy, v linear
+  plane Poiseuille (body force gx):     v parabolic, v_max = rho g H^2 / (8 eta)
+
+Measures (the same in every test):
+  tau       the x force on the top band per unit width, averaged over the
+            second half of the run (channel_stress.txt)
+  profile   salt vx in 20 layers, averaged over the second half
+            (channel_profile.txt); fits use the layers whose centres lie more
+            than 3 rmax inside the salt, i.e. beyond 2 rmax + 3 rmax from the
+            box edges (the band edge is the SPH boundary: the wall particles'
+            volumes fill the band, the fluid's begin at its edge)
+  eta_eff   tau / (slope of the linear fit)
+  rho       (Poiseuille) the salt mass per area printed by the deck
+
+The paper's parameters come from potentials/salt_paper.params, included
+before the deck.  Runs shared by several tests are made once per module.
+"""
+import math
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+CHANNEL = (ROOT / "tests" / "decks" / "channel.in").read_text()
+PARAMS = ROOT / "potentials" / "salt_paper.params"
+PACK_IN = ROOT / "tools" / "pack.in"
+
+
+def read_params(path=PARAMS):
+    """{name: value} of the 'variable NAME index VALUE' lines of a params file."""
+    vals = {}
+    for line in path.read_text().splitlines():
+        s = line.split("#")[0].split()
+        if len(s) == 4 and s[0] == "variable" and s[2] == "index":
+            vals[s[1]] = float(s[3])
+    return vals
+
+
+PAPER = read_params()
+ETA, RHO, S_PAPER, DT = PAPER["eta"], PAPER["rho"], PAPER["S"], PAPER["dt"]
+RMIN, RMAX = PAPER["rmin"], PAPER["rmax"]
+PACK = dict(W=1000, H=500, seed=7)
+NSTEPS = 10000            # the channel deck runs 2 x NSTEPS, averages the second half
+EXCL = 3 * RMAX           # profile layers this close to a wall band are not fitted
+REYNOLDS_MAX = 0.05       # rho S V H / eta: above it inertia changes the flow
+
+
+# ---------------------------------------------------------------------------
+# running LAMMPS (module-scoped runs; the `lmp` fixture of conftest.py is
+# function-scoped)
+# ---------------------------------------------------------------------------
+
+def lmp_exe():
+    exe = os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
+    if not os.path.isfile(exe):
+        pytest.fail(f"no LAMMPS executable at {exe}: build it first or set SALTDEM_LMP")
+    return exe
+
+
+class Run:
+    def __init__(self, proc, workdir):
+        self.rc = proc.returncode
+        self.out = proc.stdout + proc.stderr
+        self.workdir = pathlib.Path(workdir)
+
+    def thermo(self, index=-1):
+        tables, cols, rows = [], None, None
+        for line in self.out.splitlines():
+            s = line.split()
+            if s and s[0] == "Step":
+                cols, rows = s, []
+            elif cols is not None and s and re.fullmatch(r"-?\d+", s[0]) and len(s) == len(cols):
+                rows.append([float(v) for v in s])
+            elif cols is not None and line.startswith("Loop time"):
+                tables.append({c: [r[k] for r in rows] for k, c in enumerate(cols)})
+                cols = None
+        if not tables:
+            raise AssertionError("no thermo output in:\n" + self.out[-3000:])
+        return tables[index]
+
+    def error(self):
+        for line in self.out.splitlines():
+            if "ERROR" in line:
+                return line
+        return None
+
+
+def run_lmp(deck, workdir, np=1, omp=0, timeout=600, **variables):
+    workdir = pathlib.Path(workdir)
+    (workdir / "in.deck").write_text(deck)
+    cmd = [lmp_exe(), "-in", "in.deck", "-log", "log.lammps", "-echo", "none"]
+    for k, v in variables.items():
+        cmd += ["-var", k, str(v)]
+    if omp:
+        cmd += ["-sf", "omp", "-pk", "omp", str(omp)]
+    if np > 1:
+        mpirun = shutil.which("mpirun")
+        if mpirun is None:
+            pytest.fail("mpirun not found")
+        extra = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+        cmd = [mpirun, *extra, "--oversubscribe", "-np", str(np), *cmd]
+    # passive waiting: 2 threads on a busy 2-core machine
+    env = dict(os.environ, OMP_NUM_THREADS=str(omp or 1), OMP_WAIT_POLICY="passive")
+    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout,
+                          env=env)
+    return Run(proc, workdir)
+
+
+def check_ok(run):
+    assert run.rc == 0, f"lmp failed (rc={run.rc}): {run.error()}\n{run.out[-2000:]}"
+
+
+def read_dump(path):
+    """{id: [columns after id]} from a text dump written with 'modify sort id'."""
+    lines = path.read_text().split("ITEM: ATOMS")[1].splitlines()[1:]
+    return {int(s[0]): [float(v) for v in s[1:]] for s in (l.split() for l in lines) if s}
+
+
+def max_diff(a, b, cols=(0, 1)):
+    assert a.keys() == b.keys()
+    return max(abs(a[i][c] - b[i][c]) for i in a for c in cols)
+
+
+# ---------------------------------------------------------------------------
+# the channel flows
+# ---------------------------------------------------------------------------
+
+class Channel:
+    """Outcome of tests/decks/channel.in: stress, profiles, thermo."""
+
+    def __init__(self, run, H, V=0.0, gx=0.0, eta=ETA, S=S_PAPER):
+        self.run, self.H, self.V, self.gx, self.eta, self.S = run, H, V, gx, eta, S
+        d = run.workdir
+        self.taus = [float(l.split()[1]) for l in (d / "channel_stress.txt").read_text().splitlines()
+                     if l.strip() and not l.startswith("#")]
+        self.tau = self.taus[-1]            # second half of the run
+        self.profiles = []
+        for line in (d / "channel_profile.txt").read_text().splitlines():
+            s = line.split()
+            if not s or s[0].startswith("#"):
+                continue
+            if len(s) == 3:
+                self.profiles.append([])
+            else:
+                self.profiles[-1].append([float(v) for v in s[1:]])
+        self.profiles = [np.array(p) for p in self.profiles]
+        self.rhob = float(re.search(r"salt mass per area: ([0-9.eE+-]+)", run.out).group(1))
+
+    def profile(self, k=-1):
+        y, n, vx = self.profiles[k].T
+        return y, n, vx
+
+    def interior(self, y):
+        return (y > 2 * RMAX + EXCL) & (y < self.H - 2 * RMAX - EXCL)
+
+    def fit(self, deg, k=-1):
+        """Polynomial fit of the interior profile: coefficients and R^2."""
+        y, n, vx = self.profile(k)
+        m = self.interior(y)
+        assert m.sum() >= 8, f"only {m.sum()} profile layers to fit"
+        p = np.polyfit(y[m], vx[m], deg)
+        res = vx[m] - np.polyval(p, y[m])
+        r2 = 1.0 - (res ** 2).sum() / ((vx[m] - vx[m].mean()) ** 2).sum()
+        return p, r2
+
+    @property
+    def rate(self):
+        return self.fit(1)[0][0]
+
+    @property
+    def eta_eff(self):
+        return self.tau / self.rate
+
+    @property
+    def reynolds(self):
+        vmax = self.V if self.V else np.abs(self.profile()[2]).max()
+        return RHO * self.S * vmax * (self.H - 4 * RMAX) / self.eta
+
+
+@pytest.fixture(scope="module")
+def pack(tmp_path_factory):
+    """The dense random pack of the paper's discs, made once per module (~10 s)."""
+    d = tmp_path_factory.mktemp("pack")
+    r = run_lmp(PACK_IN.read_text(), d, rmin=RMIN, rmax=RMAX, out="pack.data", **PACK)
+    check_ok(r)
+    m = re.search(r"pack: (\d+) discs, packing fraction ([0-9.]+)", r.out)
+    assert m, r.out[-2000:]
+    n, phi = int(m.group(1)), float(m.group(2))
+    assert n > 900 and 0.80 < phi < 0.90, (n, phi)
+    return d / "pack.data"
+
+
+@pytest.fixture(scope="module")
+def channel(pack, tmp_path_factory):
+    """channel(V=, gx=, eta=, S=, nsteps=) runs the channel deck once per set of
+    arguments with the paper's parameters (potentials/salt_paper.params)."""
+    cache = {}
+
+    def get(V=0.0, gx=0.0, eta=ETA, S=S_PAPER, nsteps=NSTEPS):
+        key = (V, gx, eta, S, nsteps)
+        if key not in cache:
+            d = tmp_path_factory.mktemp("channel")
+            r = run_lmp(f"include {PARAMS}\n" + CHANNEL, d, pack=pack, V=V, gx=gx, eta=eta, S=S,
+                        nsteps=nsteps)
+            check_ok(r)
+            cache[key] = Channel(r, PACK["H"], V=V, gx=gx, eta=eta, S=S)
+        return cache[key]
+
+    return get
+
+
+def test_params_file_is_includable(lmp):
+    """potentials/salt_paper.params is valid LAMMPS and holds the paper's salt;
+    a -var on the command line overrides it."""
+    deck = (f"include {PARAMS}\n"
+            'print "P eta=${eta} rho=${rho} rmin=${rmin} rmax=${rmax} kn_salt=${kn_salt} '
+            'kn_wall=${kn_wall} K_salt=${K_salt} h_salt=${h_salt} S=${S} dt=${dt}"\n')
+    r = lmp(deck)
+    check_ok(r)
+    line = next(l for l in r.out.splitlines() if l.startswith("P eta="))
+    got = {k: float(v) for k, v in (w.split("=") for w in line.split()[1:])}
+    assert got == dict(eta=5e8, rho=2200, rmin=6.25, rmax=15.625, kn_salt=1e7, kn_wall=5e9,
+                       K_salt=1e8, h_salt=28, S=20, dt=0.002)
+    assert got == {k: PAPER[k] for k in got}
+    r = lmp(deck, eta="1e9")
+    assert "P eta=1e9 " in r.out
+
+
+# ---------------------------------------------------------------------------
+# 1. plane Couette
+# ---------------------------------------------------------------------------
+
+def test_couette_paper_parameters(channel):
+    """eta 5e8, dt 0.002, S 20, radii 6.25-15.625, V 1 m/s (Re 0.04), 2 x 10,000
+    steps.  The second-half profile is linear (R^2 > 0.99) and the same as the
+    first half's (slope within 2 %), tau / (dv/dy) = eta within 5 %, nothing is
+    NaN and the kinetic energy of the salt stays near that of the linear
+    profile, M V^2 / 6."""
+    c = channel(V=1.0)
+    assert c.reynolds < REYNOLDS_MAX
+    t1, t2 = c.run.thermo(0), c.run.thermo(1)
+    assert t2["Step"][-1] == 2 * NSTEPS >= 20000
+    assert not re.search(r"\b(nan|inf)\b", c.run.out.lower())
+    for t in (t1, t2):
+        assert all(math.isfinite(v) for col in t.values() for v in col)
+
+    p, r2 = c.fit(1)
+    assert r2 > 0.99, f"Couette profile not linear: R^2 = {r2:.5f}"
+    p1, _ = c.fit(1, k=0)
+    assert abs(p1[0] / p[0] - 1.0) < 0.02, f"shear rate first half {p1[0]:.5g}, second {p[0]:.5g}"
+    assert c.eta_eff == pytest.approx(ETA, rel=0.05), \
+        f"eta_eff = {c.eta_eff:.4g} (tau {c.tau:.4g} Pa, dv/dy {c.rate:.4g} 1/s)"
+
+    # kinetic energy: salt mass times <v^2>/2 of the linear profile
+    mass = c.rhob * PACK["W"] * (PACK["H"] - 4 * RMAX)
+    ke_lin = 0.5 * mass * c.V ** 2 / 3.0
+    ke = t1["c_kes"] + t2["c_kes"]
+    assert max(ke) < 1.5 * ke_lin, f"KE peaked at {max(ke) / ke_lin:.3g} x M V^2/6"
+    assert ke[-1] == pytest.approx(ke_lin, rel=0.25)
+
+
+def test_couette_wall_stress_is_steady(channel):
+    """Steady flow: the wall shear stress has no trend over the averaging window
+    (the second half of the run).  The linear trend of the instantaneous stress
+    (thermo, every 1,000 steps) over the window must be < 2 % of its mean;
+    otherwise eta_eff depends on when it is measured."""
+    c = channel(V=1.0)
+    t = c.run.thermo(1)
+    step, tau = np.array(t["Step"]), np.array(t["v_tau"])
+    slope = np.polyfit(step, tau, 1)[0]
+    drift = slope * (step[-1] - step[0]) / tau.mean()
+    assert abs(drift) < 0.02, \
+        f"wall stress drifts by {100 * drift:+.2f} % over the averaging window " \
+        f"({tau[0]:.4g} -> {tau[-1]:.4g} Pa) at a steady shear rate"
+
+
+def test_couette_second_rate_is_newtonian(channel):
+    """V 0.5 m/s as well (Re 0.02): the same tau / rate within 5 %, and the line
+    through the two (rate, tau) points passes near the origin: |tau0| < 5 % of
+    the stress at the lower rate (no yield stress), slope = eta within 5 %."""
+    lo, hi = channel(V=0.5), channel(V=1.0)
+    assert lo.reynolds < REYNOLDS_MAX and lo.fit(1)[1] > 0.99
+    assert lo.eta_eff / hi.eta_eff == pytest.approx(1.0, rel=0.05), \
+        f"eta_eff {lo.eta_eff:.4g} at V 0.5, {hi.eta_eff:.4g} at V 1"
+    slope = (hi.tau - lo.tau) / (hi.rate - lo.rate)
+    tau0 = lo.tau - slope * lo.rate
+    assert abs(tau0) < 0.05 * lo.tau, f"intercept tau0 = {tau0:.4g} Pa, tau(low) = {lo.tau:.4g}"
+    assert slope == pytest.approx(ETA, rel=0.05), f"two-rate slope {slope:.4g}"
+
+
+def test_couette_twice_the_viscosity(channel):
+    """eta 1e9 (S 40, the same viscous stable dt and Reynolds number): the same
+    eta_eff / eta as eta 5e8 within 5 %."""
+    a, b = channel(V=1.0), channel(V=1.0, eta=2 * ETA, S=2 * S_PAPER)
+    assert b.reynolds < REYNOLDS_MAX and b.fit(1)[1] > 0.99
+    ra, rb = a.eta_eff / ETA, b.eta_eff / (2 * ETA)
+    assert rb == pytest.approx(ra, rel=0.05), f"eta_eff/eta = {ra:.4f} (5e8), {rb:.4f} (1e9)"
+
+
+# ---------------------------------------------------------------------------
+# 2. Poiseuille
+# ---------------------------------------------------------------------------
+
+def test_poiseuille_parabola(channel):
+    """Body force gx = 12 m/s^2 on the salt between two fixed walls (v_max about
+    1 m/s, Re 0.04): the interior profile is a parabola (R^2 > 0.99) whose
+    maximum is rho g H_eff^2 / (8 eta) within 5 %, with H_eff the distance
+    between the parabola's zeros and rho the salt mass per area."""
+    g = 12.0
+    c = channel(gx=g)
+    assert c.reynolds < REYNOLDS_MAX
+    p, r2 = c.fit(2)
+    assert r2 > 0.99, f"Poiseuille profile not parabolic: R^2 = {r2:.5f}"
+    assert p[0] < 0
+    y0, y1 = sorted(np.roots(p).real)
+    heff = y1 - y0
+    # the zeros lie near the band edges (no-slip at both walls)
+    assert abs(y0 - 2 * RMAX) < 2 * RMAX and abs(y1 - (c.H - 2 * RMAX)) < 2 * RMAX, (y0, y1)
+    vmax = p[2] - p[1] ** 2 / (4 * p[0])
+    pred = c.rhob * g * heff ** 2 / (8 * ETA)
+    assert vmax == pytest.approx(pred, rel=0.05), \
+        f"v_max {vmax:.4g} vs rho g H^2/(8 eta) = {pred:.4g} (H_eff {heff:.1f}): " \
+        f"eta_eff = {ETA * pred / vmax:.4g}"
+
+
+# ---------------------------------------------------------------------------
+# 3. no-slip
+# ---------------------------------------------------------------------------
+
+def test_no_slip_at_both_walls(channel):
+    """Couette V 1 m/s.  Measure: the linear fit of the interior profile,
+    extrapolated to the edges of the wall bands (the SPH boundary), gives the
+    wall speeds - V at the top, 0 at the bottom - within 2 % of V.  And the
+    layer of salt next to the moving band (layer centres within 2 rmax of its
+    edge: the discs that touch it) moves at V within 2 % (time average)."""
+    c = channel(V=1.0)
+    p, _ = c.fit(1)
+    top, bot = np.polyval(p, c.H - 2 * RMAX), np.polyval(p, 2 * RMAX)
+    assert abs(top - c.V) < 0.02 * c.V, f"salt at the moving wall: {top:.4f} m/s, wall {c.V}"
+    assert abs(bot) < 0.02 * c.V, f"salt at the fixed wall: {bot:.4f} m/s"
+    y, n, vx = c.profile()
+    near = (y > c.H - 4 * RMAX) & (y < c.H - 2 * RMAX) & (n > 0)
+    assert near.any()
+    vnear = (n[near] * vx[near]).sum() / n[near].sum()
+    assert abs(vnear - c.V) < 0.02 * c.V, f"salt layer touching the moving wall: {vnear:.4f} m/s"
+
+
+# ---------------------------------------------------------------------------
+# 4. MPI ranks and OpenMP threads
+# ---------------------------------------------------------------------------
+
+SHORT = f"include {PARAMS}\n" + CHANNEL + \
+    "write_dump all custom final.dump id x y vx vy modify sort id format float %.17g\n"
+
+
+@pytest.fixture(scope="module")
+def short_serial(pack, tmp_path_factory):
+    d = tmp_path_factory.mktemp("short")
+    r = run_lmp(SHORT, d, pack=pack, V=1.0, nsteps=1000)
+    check_ok(r)
+    return Channel(r, PACK["H"], V=1.0), read_dump(d / "final.dump")
+
+
+@pytest.mark.parametrize("mode", ["np2", "omp2"])
+def test_parallel_same_eta_eff(short_serial, pack, tmp_path, mode):
+    """2 x 1,000 Couette steps on 2 MPI ranks, or with -sf omp -pk omp 2: the
+    same wall stress, shear rate and eta_eff as serial within 1e-6 relative,
+    and the same positions within 1e-8 of the box width (only the summation
+    order differs)."""
+    a, da = short_serial
+    kw = dict(np=2) if mode == "np2" else dict(omp=2)
+    r = run_lmp(SHORT, tmp_path, pack=pack, V=1.0, nsteps=1000, **kw)
+    check_ok(r)
+    if mode == "np2":
+        assert "2 by 1 by 1" in r.out or "1 by 2 by 1" in r.out
+    else:
+        assert "pair saltdem/viscous/omp" in r.out
+    b = Channel(r, PACK["H"], V=1.0)
+    assert b.tau == pytest.approx(a.tau, rel=1e-6)
+    assert b.rate == pytest.approx(a.rate, rel=1e-6)
+    assert b.eta_eff == pytest.approx(a.eta_eff, rel=1e-6)
+    db = read_dump(tmp_path / "final.dump")
+    assert max_diff(da, db) / PACK["W"] < 1e-8
+
+
+# ---------------------------------------------------------------------------
+# 5. restart
+# ---------------------------------------------------------------------------
+
+RESTART_A = f"include {PARAMS}\n" + CHANNEL.replace(
+    "run             $(v_nsteps)\nrun             $(v_nsteps)\n",
+    "run 400\nwrite_restart r.restart\nrun 400\n"
+    "write_dump all custom final.dump id x y vx vy modify sort id format float %.17g\n")
+
+assert "write_restart" in RESTART_A
+
+RESTART_B = """read_restart r.restart
+comm_modify vel yes
+neighbor 2.8 bin
+neigh_modify exclude type 3 3
+neigh_modify every 1 delay 0 check yes
+if "${recreate} > 0" then "pair_style saltdem/viscous" &
+  "pair_coeff * * 5e8 5e9 fluid 28 1e8" "pair_coeff 2 2 5e8 1e7 fluid 28 1e8"
+fix integ salt saltdem/nve inertia 20
+fix drive top move linear 1 0 0
+fix 2d all enforce2d
+run 400
+write_dump all custom final.dump id x y vx vy modify sort id format float %.17g
+"""
+
+
+def test_restart_continues_identically(pack, tmp_path):
+    """run 400; write_restart; run 400  ==  read_restart; run 400 (one rank,
+    Couette, positions within 1e-10 of the box width).  eta, K, h and the
+    reference densities rho0 come from the restart file: rho0 is not measured
+    again.  Control: re-creating the pair style after read_restart measures
+    rho0 at the restart step and must change the result."""
+    ra = run_lmp(RESTART_A, tmp_path, pack=pack, V=1.0, nsteps=400)
+    check_ok(ra)
+    assert ra.out.count("reference density of fluid type 2") == 1
+    a = read_dump(tmp_path / "final.dump")
+    rb = run_lmp(RESTART_B, tmp_path, recreate=0)
+    check_ok(rb)
+    assert "reference density" not in rb.out
+    b = read_dump(tmp_path / "final.dump")
+    assert len(a) == len(b) > 900
+    assert max_diff(a, b) / PACK["W"] < 1e-10
+    assert max_diff(a, b, cols=(2, 3)) < 1e-8
+
+    rc = run_lmp(RESTART_B, tmp_path, recreate=1)
+    check_ok(rc)
+    assert "reference density of fluid type 2" in rc.out
+    c = read_dump(tmp_path / "final.dump")
+    assert max_diff(a, c) / PACK["W"] > 1e-8
+
+
+# ---------------------------------------------------------------------------
+# 6. errors and the stable time step
+# ---------------------------------------------------------------------------
+
+def err_deck(astyle="sphere", comm="comm_modify vel yes", ps="",
+             pc=("1 1 5e8 1e7 fluid 28 1e8", "2 2 5e8 5e9 contact 0.5",
+                 "1 2 5e8 5e9 contact 0.5 tangential 0.5"),
+             fix="saltdem/nve inertia 20", dt=0.002, nrun=10):
+    """10 x 10 discs (diameter 19, spacing 20), type 1 salt (fluid), the lowest
+    two rows type 2 walls (contact, not integrated)."""
+    setline = ("set group all diameter 19\nset group all density/disc 2200"
+               if astyle == "sphere" else "mass * 1.0")
+    coeffs = "\n".join(f"pair_coeff {c}" for c in pc)
+    return f"""units si
+dimension 2
+atom_style {astyle}
+boundary p f p
+{comm}
+region box block 0 200 0 200 -0.5 0.5
+create_box 2 box
+lattice sq 20
+create_atoms 1 box
+region low block INF INF INF 25 INF INF units box
+set region low type 2
+{setline}
+group salt type 1
+neighbor 2.8 bin
+pair_style saltdem/viscous {ps}
+{coeffs}
+neigh_modify exclude type 2 2
+fix 1 salt {fix}
+fix 2 all enforce2d
+timestep {dt}
+thermo 5
+run {nrun}
+"""
+
+
+def assert_error(r, *words):
+    assert r.rc > 0, f"expected a clean error exit, got rc={r.rc}\n{r.out[-1500:]}"
+    assert "Segmentation" not in r.out and "signal" not in r.out.lower()
+    line = r.error()
+    assert line is not None and line.startswith("ERROR"), r.out[-1500:]
+    for w in words:
+        assert w in line, f"'{w}' not in: {line}"
+    return line
+
+
+def limit_in(line):
+    m = re.search(r"stable limit ([0-9.eE+-]+)", line)
+    assert m, line
+    return float(m.group(1))
+
+
+def test_good_deck_runs(lmp):
+    r = lmp(err_deck())
+    check_ok(r)
+    assert "reference density of fluid type 1" in r.out
+
+
+PC_GOOD = ("1 1 5e8 1e7 fluid 28 1e8", "2 2 5e8 5e9 contact 0.5",
+           "1 2 5e8 5e9 contact 0.5 tangential 0.5")
+
+
+def pc1(c):
+    return (c,) + PC_GOOD[1:]
+
+
+def pc2(c):
+    return (PC_GOOD[0], c, PC_GOOD[2])
+
+
+@pytest.mark.parametrize("kw,words", [
+    (dict(pc=pc1("1 1 5e8 1e7 fluid 28")), ["saltdem/viscous", "'fluid' takes h and K", "got 1"]),
+    (dict(pc=pc1("1 1 5e8 1e7 fluid 28 1e8 3")), ["saltdem/viscous", "'fluid' takes h and K"]),
+    (dict(pc=pc1("1 1 5e8 1e7 fluid")), ["saltdem/viscous", "6 or more", "got 5"]),
+    (dict(pc=pc1("1 1 5e8")), ["saltdem/viscous", "6 or more", "got 3"]),
+    (dict(pc=pc2("2 2 5e8 5e9 contact 0.5 tangential")), ["saltdem/viscous", "contact 0.5",
+                                                          "tangential R"]),
+    (dict(pc=pc2("2 2 5e8 5e9 contact 0.5 bogus 1")), ["saltdem/viscous", "tangential R"]),
+    (dict(pc=pc1("1 1 5e8 1e7 liquid 28 1e8")), ["saltdem/viscous", "unknown law 'liquid'"]),
+    (dict(pc=pc1("1 1 -5e8 1e7 fluid 28 1e8")), ["saltdem/viscous", "eta", "must be > 0"]),
+    (dict(pc=pc1("1 1 0 1e7 fluid 28 1e8")), ["saltdem/viscous", "eta", "must be > 0"]),
+    (dict(pc=pc1("1 1 5e8 -1e7 fluid 28 1e8")), ["saltdem/viscous", "kn", "must be > 0"]),
+    (dict(pc=pc1("1 1 5e8 1e7 fluid -28 1e8")), ["saltdem/viscous", "h = -28", "must be > 0"]),
+    (dict(pc=pc1("1 1 5e8 1e7 fluid 28 -1e8")), ["saltdem/viscous", "K =", "must be >= 0"]),
+    (dict(pc=pc2("2 2 5e8 5e9 contact -0.5")), ["saltdem/viscous", "gap = -0.5"]),
+    (dict(pc=pc2("2 2 5e8 5e9 contact 0.5 tangential -1")), ["saltdem/viscous",
+                                                             "tangential ratio = -1"]),
+    (dict(pc=pc1("1 1 abc 1e7 fluid 28 1e8")), ["abc"]),
+    (dict(pc=pc1("1 3 5e8 1e7 fluid 28 1e8")), ["3"]),
+    (dict(pc=PC_GOOD[:2]), ["saltdem/viscous", "different laws", "pair_coeff 1 2"]),
+    (dict(ps="bogus 1"), ["saltdem/viscous", "unknown keyword 'bogus'"]),
+    (dict(ps="calibration"), ["saltdem/viscous", "calibration"]),
+    (dict(ps="calibration 0"), ["saltdem/viscous", "calibration 0 must be > 0"]),
+    (dict(ps="dtfactor 0.9"), ["saltdem/viscous", "dtfactor"]),
+    (dict(ps="viscfactor 1.5"), ["saltdem/viscous", "viscfactor"]),
+    (dict(astyle="atomic", fix="nve"), ["saltdem/viscous", "atom_style sphere"]),
+    (dict(comm=""), ["saltdem/viscous", "comm_modify vel yes"]),
+    (dict(fix="saltdem/nve inertia 0.5"), ["saltdem/nve", "inertia 0.5 must be >= 1"]),
+    (dict(fix="saltdem/nve inertia"), ["saltdem/nve", "inertia"]),
+    (dict(fix="saltdem/nve bogus 1"), ["saltdem/nve", "unknown keyword 'bogus'"]),
+    (dict(fix="saltdem/nve check -1"), ["saltdem/nve", "check -1"]),
+    (dict(astyle="atomic"), ["saltdem/nve", "atom style sphere"]),
+], ids=["fluid-noK", "fluid-extra", "5args", "3args", "tangential-novalue", "contact-kw",
+        "law-kw", "eta<0", "eta0", "kn<0", "h<0", "K<0", "gap<0", "ratio<0", "nonnumeric",
+        "type-range", "mixed-laws", "style-kw", "calibration-novalue", "calibration0",
+        "dtfactor>0.8", "viscfactor>1", "atomic", "no-ghost-vel", "inertia<1",
+        "inertia-novalue", "fix-kw", "check<0", "fix-atomic"])
+def test_error(lmp, kw, words):
+    assert_error(lmp(err_deck(**kw)), *words)
+
+
+def test_error_timestep_viscous_without_inertia(lmp):
+    """The paper's dt without the inertia factor: the viscous limit
+    0.5 m h^2 / (7 eta V) (V = disc/0.7) = 1.72e-4 s is exceeded; the message
+    names eta, the types, the limit and the way out (inertia S)."""
+    line = assert_error(lmp(err_deck(fix="saltdem/nve")), "saltdem/viscous", "timestep 0.002",
+                        "eta = 5e+08", "types 1 1", "inertia")
+    lim = limit_in(line)
+    assert lim == pytest.approx(0.5 * 2200 * 0.7 * 28 ** 2 / (7 * 5e8), rel=1e-4)
+    # inertia S scales the limit by S
+    line = assert_error(lmp(err_deck(fix="saltdem/nve inertia 5")), "eta = 5e+08", "inertia")
+    assert limit_in(line) == pytest.approx(5 * lim, rel=1e-4)
+
+
+def test_error_timestep_contact_and_sound(lmp):
+    """The contact dashpot limit 0.5 S m / (eta (1 + 3 ratio)) and the sound
+    limit 0.25 h / c, c^2 = K / (0.7 S rho), each named when it binds."""
+    m = 2200 * math.pi * 9.5 ** 2
+    line = assert_error(lmp(err_deck(pc=pc2("2 2 5e8 5e9 contact 0.5")[:2] +
+                                     ("1 2 5e9 5e9 contact 0.5 tangential 2",))),
+                        "saltdem/viscous", "eta = 5e+09", "types 1 2", "calibration")
+    assert limit_in(line) == pytest.approx(0.5 * 20 * m / (5e9 * 7), rel=1e-4)
+    line = assert_error(lmp(err_deck(pc=pc1("1 1 5e8 1e7 fluid 28 1e12"))),
+                        "saltdem/viscous", "K = 1e+12", "sound")
+    c = math.sqrt(1e12 / (0.7 * 20 * 2200))
+    assert limit_in(line) == pytest.approx(0.25 * 28 / c, rel=1e-4)
+
+
+def test_timestep_just_below_limit_runs(lmp):
+    line = assert_error(lmp(err_deck(fix="saltdem/nve")), "eta")
+    lim = limit_in(line)
+    check_ok(lmp(err_deck(fix="saltdem/nve", dt=0.99 * lim)))
+
+
+NAN_DECK = """units si
+dimension 2
+atom_style sphere
+boundary p p p
+comm_modify vel yes
+region box block -50 50 -50 50 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 0 0 0
+set type 1 diameter 10
+set type 1 density/disc 2200
+neigh_modify every 1000000 delay 0 check no
+fix 1 all saltdem/nve ${check}
+fix 2 all viscous 1e15
+fix 3 all enforce2d
+velocity all set 1 0 0
+timestep 1e-3
+thermo 100000
+run 1000
+"""
+
+
+@pytest.mark.parametrize("check,step", [("check 1", None), ("", 100)])
+def test_nan_guard(lmp, check, step):
+    """A drag far beyond its explicit stability limit (gamma dt / m = 6e6; no
+    pair style checks it) makes the velocity overflow within a few tens of
+    steps: fix saltdem/nve stops the run with its non-finite message at the
+    first check (every step, or every 100 by default)."""
+    r = lmp(NAN_DECK, check=check)
+    line = assert_error(r, "Fix saltdem/nve", "atom 1 (type 1)", "non-finite", "timestep")
+    n = int(re.search(r"at step (\d+)", line).group(1))
+    if step is None:
+        assert 10 < n < 100, line
+    else:
+        assert n == step, line

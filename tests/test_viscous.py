@@ -244,6 +244,111 @@ def test_params_file_is_includable(lmp):
 
 
 # ---------------------------------------------------------------------------
+# 0. the law itself: an independent implementation of the documented
+#    equations (docs/pair_saltdem_viscous.rst) reproduces the forces
+# ---------------------------------------------------------------------------
+
+def wendland(r, h):
+    """2D Wendland C2 kernel and |dW/dr|/r."""
+    q = r / h
+    s = np.clip(1.0 - 0.5 * q, 0.0, None)
+    a = 7.0 / (4.0 * math.pi * h * h)
+    return a * s ** 4 * (1.0 + 2.0 * q), 35.0 / (4.0 * math.pi * h ** 4) * s ** 3
+
+
+class Snapshot:
+    """A channel dump (id type x y vx vy radius mass fx fy) and the SPH fields
+    computed from it in numpy: kernel densities over all pairs within 2h
+    except wall-wall (excluded from the neighbour list by the deck)."""
+
+    def __init__(self, path, W, h=PAPER["h_salt"]):
+        d = read_dump(path)
+        a = np.array([d[i] for i in sorted(d)])
+        self.type = a[:, 0].astype(int)
+        self.x, self.v = a[:, 1:3], a[:, 3:5]
+        self.radius, self.m, self.f = a[:, 5], a[:, 6], a[:, 7:9]
+        self.h = h
+        dx = self.x[:, None, 0] - self.x[None, :, 0]
+        dx -= W * np.round(dx / W)
+        dy = self.x[:, None, 1] - self.x[None, :, 1]
+        self.r = np.hypot(dx, dy)
+        n = len(self.m)
+        walls = self.type == 3
+        self.pair = (self.r < 2 * h) & ~np.eye(n, dtype=bool) & ~(walls[:, None] & walls[None, :])
+        r = np.where(self.pair, self.r, 1.0)
+        self.n = np.stack([dx / r, dy / r], axis=-1)
+        self.W, self.gradr = (np.where(self.pair, w, 0.0) for w in wendland(self.r, h))
+        self.rho = self.m * wendland(0.0, h)[0] + self.W @ self.m
+        self.salt = self.type == 2
+
+    def forces(self, eta, K, kn, knw, rho0):
+        """Force on each particle: Morris viscosity + SPH pressure + elastic core."""
+        P = np.array([K * (rho / rho0[t] - 1.0) for rho, t in zip(self.rho, self.type)])
+        a = self.m * P / self.rho ** 2
+        vol = self.m / self.rho
+        pc = self.m[None, :] * a[:, None] + self.m[:, None] * a[None, :]
+        knij = np.where((self.type[:, None] == 3) | (self.type[None, :] == 3), knw, kn)
+        delta = self.radius[:, None] + self.radius[None, :] - self.r
+        fel = np.where(self.pair & (delta > 0), knij * delta, 0.0)
+        fn = pc * self.gradr * self.r + fel
+        g = 2.0 * eta * vol[:, None] * vol[None, :] * self.gradr
+        dv = self.v[:, None, :] - self.v[None, :, :]
+        return (fn[..., None] * self.n - g[..., None] * dv).sum(axis=1)
+
+
+def rho0_in(out, t):
+    return float(re.search(rf"reference density of fluid type {t} = ([0-9.eE+-]+)", out).group(1))
+
+
+SNAP = f"include {PARAMS}\n" + CHANNEL.replace(
+    "run             $(v_nsteps)\nrun             $(v_nsteps)\n",
+    "variable vxs atom 1e-3*y+0.2*sin(x/37.0)\n"
+    "variable vys atom 0.1*cos(y/23.0+x/51.0)\n"
+    "velocity salt set v_vxs v_vys 0\n"
+    "run ${nrun}\n"
+    "write_dump all custom snap.dump id type x y vx vy radius mass fx fy modify sort id "
+    "format float %.17g\n")
+assert "snap.dump" in SNAP
+
+
+def test_law_matches_equations(pack, tmp_path):
+    """At the setup step of a Couette-like state (salt radii x 1.02, so salt
+    discs overlap, and an arbitrary velocity field): the reference density is
+    the mean kernel density of the salt, and every salt disc's force is the sum
+    of the Morris viscosity 2 eta V_i V_j |W'|/r (v_j - v_i), the SPH pressure
+    m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) |W'| n and the elastic core kn delta n,
+    summed over all partners within 2h (within 1e-9 of the largest force)."""
+    r = run_lmp(SNAP, tmp_path, pack=pack, V=0, nrun=0, shrink=1.02)
+    check_ok(r)
+    s = Snapshot(tmp_path / "snap.dump", PACK["W"])
+    rho0 = {2: s.rho[s.salt].mean(), 3: s.rho[s.type == 3].mean()}
+    assert rho0_in(r.out, 2) == pytest.approx(rho0[2], rel=1e-5)
+    assert rho0_in(r.out, 3) == pytest.approx(rho0[3], rel=1e-5)
+    delta = s.radius[:, None] + s.radius[None, :] - s.r
+    assert ((delta > 0) & s.pair)[np.ix_(s.salt, s.salt)].sum() > 100    # the core is tested
+    F = s.forces(ETA, PAPER["K_salt"], PAPER["kn_salt"], PAPER["kn_wall"], rho0)
+    err = np.abs(F[s.salt] - s.f[s.salt]).max() / np.abs(s.f[s.salt]).max()
+    assert err < 1e-9, f"forces differ from the equations by {err:.3g} of the largest"
+
+
+def test_salt_at_rest_keeps_its_density(pack, tmp_path):
+    """No wall motion, no body force, 2 x 5,000 steps from the channel's initial
+    state: the salt's mean kernel density stays within 0.5 % of its reference
+    rho0 (no spontaneous compaction).  A drift here makes the wall stress of
+    the Couette flow drift too (test_couette_wall_stress_is_steady)."""
+    r = run_lmp(SNAP.replace("velocity salt set v_vxs v_vys 0\n", ""), tmp_path, pack=pack, V=0,
+                nrun=10000, nsteps=5000)
+    check_ok(r)
+    s = Snapshot(tmp_path / "snap.dump", PACK["W"])
+    comp = s.rho[s.salt].mean() / rho0_in(r.out, 2) - 1.0
+    delta = s.radius[:, None] + s.radius[None, :] - s.r
+    over = ((delta > 0) & s.pair)[np.ix_(s.salt, s.salt)].sum() // 2
+    assert abs(comp) < 0.005, \
+        f"salt at rest: mean kernel density {100 * comp:+.2f} % from rho0, " \
+        f"{over} overlapping salt pairs (none at the start)"
+
+
+# ---------------------------------------------------------------------------
 # 1. plane Couette
 # ---------------------------------------------------------------------------
 
@@ -419,7 +524,7 @@ neigh_modify every 1 delay 0 check yes
 if "${recreate} > 0" then "pair_style saltdem/viscous" &
   "pair_coeff * * 5e8 5e9 fluid 28 1e8" "pair_coeff 2 2 5e8 1e7 fluid 28 1e8"
 fix integ salt saltdem/nve inertia 20
-fix drive top move linear 1 0 0
+fix drive top move linear 1 0 0 units box
 fix 2d all enforce2d
 run 400
 write_dump all custom final.dump id x y vx vy modify sort id format float %.17g

@@ -318,7 +318,7 @@ def test_law_matches_equations(pack, tmp_path):
     of the Morris viscosity 2 eta V_i V_j |W'|/r (v_j - v_i), the SPH pressure
     m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) |W'| n and the elastic core kn delta n,
     summed over all partners within 2h (within 1e-9 of the largest force)."""
-    r = run_lmp(SNAP, tmp_path, pack=pack, V=0, nrun=0, shrink=1.02)
+    r = run_lmp(SNAP, tmp_path, pack=pack, V=0, nrun=0, nsteps=100, shrink=1.02)
     check_ok(r)
     s = Snapshot(tmp_path / "snap.dump", PACK["W"])
     rho0 = {2: s.rho[s.salt].mean(), 3: s.rho[s.type == 3].mean()}

@@ -281,12 +281,22 @@ class Snapshot:
         self.rho = self.m * wendland(0.0, h)[0] + self.W @ self.m
         self.salt = self.type == 2
 
-    def forces(self, eta, K, kn, knw, rho0):
-        """Force on each particle: Morris viscosity + SPH pressure + elastic core."""
-        P = np.array([K * (rho / rho0[t] - 1.0) for rho, t in zip(self.rho, self.type)])
+    def forces(self, eta, K, kn, knw, rho0, wall_fluid=True):
+        """Force on each particle: Morris viscosity + SPH pressure + elastic core.
+        Salt (type 2) is FLUID; walls (type 3) are FLUID too (wall_fluid) or have
+        a 'contact' law of their own, with a FLUID salt-wall pair: then they
+        carry no pressure (the salt's is mirrored) and their volume is m / rho0
+        of the salt."""
+        fluid = self.salt | ((self.type == 3) & wall_fluid)     # FLUID law of their own
+        carries = fluid & (K > 0)                                 # ... with a pressure
+        r0 = np.array([rho0.get(t, 0.0) for t in self.type])
+        P = np.where(carries, K * (self.rho / np.where(carries, r0, 1.0) - 1.0), 0.0)
         a = self.m * P / self.rho ** 2
-        vol = self.m / self.rho
-        pc = self.m[None, :] * a[:, None] + self.m[:, None] * a[None, :]
+        vol = np.where(fluid, self.m / self.rho, self.m / rho0[2])
+        mi, mj = self.m[:, None], self.m[None, :]
+        ci, cj = carries[:, None], carries[None, :]
+        pc = np.where(ci & cj, mj * a[:, None] + mi * a[None, :],
+                      np.where(ci, 2 * mj * a[:, None], np.where(cj, 2 * mi * a[None, :], 0.0)))
         knij = np.where((self.type[:, None] == 3) | (self.type[None, :] == 3), knw, kn)
         delta = self.radius[:, None] + self.radius[None, :] - self.r
         fel = np.where(self.pair & (delta > 0), knij * delta, 0.0)
@@ -311,22 +321,36 @@ SNAP = f"include {PARAMS}\n" + CHANNEL.replace(
 assert "snap.dump" in SNAP
 
 
-def test_law_matches_equations(pack, tmp_path):
-    """At the setup step of a Couette-like state (salt radii x 1.02, so salt
-    discs overlap, and an arbitrary velocity field): the reference density is
-    the mean kernel density of the salt, and every salt disc's force is the sum
-    of the Morris viscosity 2 eta V_i V_j |W'|/r (v_j - v_i), the SPH pressure
-    m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) |W'| n and the elastic core kn delta n,
-    summed over all partners within 2h (within 1e-9 of the largest force)."""
-    r = run_lmp(SNAP, tmp_path, pack=pack, V=0, nrun=0, nsteps=100, shrink=1.02)
+@pytest.mark.parametrize("case", ["paper", "K0", "contact-walls"])
+def test_law_matches_equations(pack, tmp_path, case):
+    """At the setup step of a channel state (salt radii x 1.02, so salt discs
+    overlap, and an arbitrary velocity field): the reference density is the
+    mean kernel density of the salt, and every salt disc's force is the sum of
+    the Morris viscosity 2 eta V_i V_j |W'|/r (v_j - v_i), the SPH pressure
+    m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) |W'| n and the elastic core kn delta n
+    over all partners within 2h (within 1e-9 of the largest force).
+    K0: a fluid without pressure (K = 0) keeps its kernel volumes and its
+    viscosity.  contact-walls: the walls' own law is 'contact' and the
+    salt-wall pair 'fluid': the walls mirror the salt's pressure and have the
+    volume m / rho0 of the salt."""
+    K = 0.0 if case == "K0" else PAPER["K_salt"]
+    deck = SNAP
+    if case == "contact-walls":
+        deck = deck.replace("neigh_modify    exclude type 3 3",
+                            "pair_coeff 3 3 ${eta} ${knw} contact 0\nneigh_modify    exclude type 3 3")
+        assert "contact 0" in deck
+    r = run_lmp(deck, tmp_path, pack=pack, V=0, nrun=0, nsteps=100, shrink=1.02, K=K)
     check_ok(r)
     s = Snapshot(tmp_path / "snap.dump", PACK["W"])
     rho0 = {2: s.rho[s.salt].mean(), 3: s.rho[s.type == 3].mean()}
-    assert rho0_in(r.out, 2) == pytest.approx(rho0[2], rel=1e-5)
-    assert rho0_in(r.out, 3) == pytest.approx(rho0[3], rel=1e-5)
+    if K > 0:
+        assert rho0_in(r.out, 2) == pytest.approx(rho0[2], rel=1e-5)
+    if case == "paper":
+        assert rho0_in(r.out, 3) == pytest.approx(rho0[3], rel=1e-5)
     delta = s.radius[:, None] + s.radius[None, :] - s.r
     assert ((delta > 0) & s.pair)[np.ix_(s.salt, s.salt)].sum() > 100    # the core is tested
-    F = s.forces(ETA, PAPER["K_salt"], PAPER["kn_salt"], PAPER["kn_wall"], rho0)
+    F = s.forces(ETA, K, PAPER["kn_salt"], PAPER["kn_wall"], rho0,
+                 wall_fluid=(case != "contact-walls"))
     err = np.abs(F[s.salt] - s.f[s.salt]).max() / np.abs(s.f[s.salt]).max()
     assert err < 1e-9, f"forces differ from the equations by {err:.3g} of the largest"
 

@@ -158,12 +158,17 @@ void PairSaltdem::min_inertial_mass(double *mmin)
 {
   const int n = atom->ntypes;
   std::vector<double> local(n + 1, DBL_MAX);
+  std::vector<bigint> count(n + 1, 0), all(n + 1);
   for (int i = 0; i < atom->nlocal; i++) {
     const double scale = inertia_scale(i);
     const int t = atom->type[i];
+    count[t]++;
     if (scale > 0.0) local[t] = MIN(local[t], scale * atom->rmass[i]);
   }
   MPI_Allreduce(&local[1], &mmin[1], n, MPI_DOUBLE, MPI_MIN, world);
+  MPI_Allreduce(&count[1], &all[1], n, MPI_LMP_BIGINT, MPI_SUM, world);
+  for (int t = 1; t <= n; t++)
+    if (all[t] == 0) mmin[t] = -1.0;    // no atoms of this type: no limit from it
 }
 
 /* ---------------------------------------------------------------------- */

@@ -67,7 +67,8 @@ class PairSaltdem : public Pair {
   virtual void mix(int i, int j) = 0;             // fill params[i][j] from i,i and j,j
   virtual double range(int i, int j) const = 0;   // interaction range beyond contact
   virtual double range_abs(int, int) const { return 0.0; }    // range between centres
-  // the largest stable dt given the smallest inertial mass per type (<= 0: none)
+  // the largest stable dt given the smallest inertial mass per type (DBL_MAX:
+  // walls only, -1: no atoms); returns 0 if nothing limits it
   virtual double stable_dt(const double *mmin, std::string &why) = 0;
   void min_inertial_mass(double *mmin);
   double inertia_scale(int i);

@@ -201,6 +201,7 @@ double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
         if (!setflag[i][i] || !setflag[j][j]) continue;    // another hybrid sub-style's pair
         mix(i, j);                                          // init_one() has not run yet
       }
+      if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;               // a type without atoms
       if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
       const auto &p = params[i][j];
       const double m = MIN(mmin[i], mmin[j]);

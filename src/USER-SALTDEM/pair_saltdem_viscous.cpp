@@ -21,7 +21,7 @@
 using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
-    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), isfluid(nullptr), nmax(0),
+    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), fluidself(nullptr), isfluid(nullptr), nmax(0),
     any_fluid(false),
     calibration(DEFAULT_CALIBRATION), viscfactor(0.5)
 {
@@ -38,6 +38,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(apress);
   memory->destroy(rho);
   memory->destroy(isfluid);
+  memory->destroy(fluidself);
 }
 
 void PairSaltdemViscous::allocate_params(int n)
@@ -46,6 +47,7 @@ void PairSaltdemViscous::allocate_params(int n)
   memset(&params[0][0], 0, sizeof(SaltDEM::ViscousParams) * (n + 1) * (n + 1));
   memory->create(eta, n + 1, n + 1, "pair:eta");
   memory->create(isfluid, n + 1, "pair:isfluid");
+  memory->create(fluidself, n + 1, "pair:fluidself");
 }
 
 void PairSaltdemViscous::compute(int eflag, int vflag)
@@ -181,7 +183,8 @@ void PairSaltdemViscous::init_style()
   any_fluid = false;
   for (int i = 1; i <= atom->ntypes; i++) {
     // (under pair hybrid, types of other sub-styles have no coefficients here)
-    isfluid[i] = (setflag[i][i] && params[i][i].mode == SaltDEM::VISCOUS_FLUID && params[i][i].K > 0.0) ? 1 : 0;
+    fluidself[i] = (setflag[i][i] && params[i][i].mode == SaltDEM::VISCOUS_FLUID) ? 1 : 0;
+    isfluid[i] = (fluidself[i] && params[i][i].K > 0.0) ? 1 : 0;
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID) any_fluid = true;
   }
@@ -215,7 +218,7 @@ void PairSaltdemViscous::pre_loop()
   for (int i = 0; i < nall; i++) {
     const int t = type[i];
     const auto &p = params[t][t];
-    rho[i] = (i < nlocal && setflag[t][t] && p.mode == SaltDEM::VISCOUS_FLUID)
+    rho[i] = (i < nlocal && fluidself[t])
         ? m[i] * SaltDEM::wendland_c2(dim, p.h, 0.0)
         : 0.0;
   }
@@ -238,7 +241,7 @@ void PairSaltdemViscous::pre_loop()
   const int nt = atom->ntypes;
   bool need = false;
   for (int t = 1; t <= nt; t++)
-    if (isfluid[t] && params[t][t].rho0 <= 0.0) need = true;
+    if (fluidself[t] && params[t][t].rho0 <= 0.0) need = true;
   if (need) {
     std::vector<double> sum(2 * (nt + 1), 0.0), all(2 * (nt + 1));
     for (int i = 0; i < nlocal; i++) {
@@ -247,7 +250,7 @@ void PairSaltdemViscous::pre_loop()
     }
     MPI_Allreduce(sum.data(), all.data(), 2 * (nt + 1), MPI_DOUBLE, MPI_SUM, world);
     for (int t = 1; t <= nt; t++)
-      if (isfluid[t] && params[t][t].rho0 <= 0.0 && all[2 * t + 1] > 0.0) {
+      if (fluidself[t] && params[t][t].rho0 <= 0.0 && all[2 * t + 1] > 0.0) {
         params[t][t].rho0 = all[2 * t] / all[2 * t + 1];
         if (comm->me == 0)
           utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.6g}\n",
@@ -259,10 +262,10 @@ void PairSaltdemViscous::pre_loop()
   // its own: it gets the volume it would have at the fluid's reference density
   double rhob = 0.0;
   for (int t = 1; t <= nt; t++)
-    if (isfluid[t]) rhob = MAX(rhob, params[t][t].rho0);
+    if (fluidself[t]) rhob = MAX(rhob, params[t][t].rho0);
   for (int i = 0; i < nlocal; i++) {
     const auto &p = params[type[i]][type[i]];
-    if (isfluid[type[i]])
+    if (fluidself[type[i]])
       vol[i] = (rho[i] > 0.0) ? m[i] / rho[i] : 0.0;
     else
       vol[i] = (rhob > 0.0) ? m[i] / rhob : 0.0;
@@ -359,6 +362,7 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
         if (!setflag[i][i] || !setflag[j][j]) continue;    // another hybrid sub-style's pair
         mix(i, j);                                          // init_one() has not run yet
       }
+      if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;               // a type without atoms
       if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
       const double m = MIN(mmin[i], mmin[j]);
       const double e = eta[i][j];

@@ -60,7 +60,8 @@ class PairSaltdemViscous : public PairSaltdem {
   double *vol;        // FLUID: particle volume m / rho, owned and ghost atoms
   double *apress;     // FLUID: m P / rho^2 per atom (pressure term), owned and ghost atoms
   double *rho;        // FLUID: kernel density sum_j m_j W_ij, owned atoms
-  int *isfluid;       // per type: its own pair is FLUID with K > 0 (carries pressure)
+  int *fluidself;     // per type: its own pair is FLUID (kernel volume, reference density)
+  int *isfluid;       // per type: FLUID with K > 0 (carries pressure)
   int nmax;           // allocated length of vol
   bool any_fluid;     // some type pair uses the FLUID law
   double calibration;

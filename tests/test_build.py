@@ -1,7 +1,7 @@
 """The build: lmp carries USER-SALTDEM and its styles, decks using them run, bad arguments fail."""
 import subprocess
 
-from conftest import lmp_path
+from lmprun import lmp_path
 
 STYLES = ["saltdem/cohesive", "saltdem/cohesive/omp", "saltdem/viscous", "saltdem/viscous/omp",
           "saltdem/nve"]

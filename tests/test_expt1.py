@@ -6,7 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import ROOT, lmp_path
+from lmprun import ROOT, lmp_path
 
 TINY = dict(preset="quick", width=1250, salt=250, cover=500, target=10, f="5 10",
             nsettle=300, rate=1.0, root=str(ROOT))

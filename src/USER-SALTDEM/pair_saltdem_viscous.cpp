@@ -13,6 +13,7 @@
 #include "domain.h"
 #include "error.h"
 #include "memory.h"
+#include "modify.h"
 
 #include <cfloat>
 #include <cmath>
@@ -20,10 +21,12 @@
 
 using namespace LAMMPS_NS;
 
+static const char RHO_FIX_ID[] = "SALTDEM_VISCOUS_RHO";
+
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
-    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), fluidself(nullptr), isfluid(nullptr), nmax(0),
+    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), index_rho(-1), fluidself(nullptr), isfluid(nullptr), nmax(0),
     any_fluid(false),
-    calibration(DEFAULT_CALIBRATION), viscfactor(0.5)
+    calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.5)
 {
   comm_forward = 2;
   comm_reverse = 1;
@@ -39,6 +42,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(rho);
   memory->destroy(isfluid);
   memory->destroy(fluidself);
+  if (modify->get_fix_by_id(RHO_FIX_ID)) modify->delete_fix(RHO_FIX_ID);
 }
 
 void PairSaltdemViscous::allocate_params(int n)
@@ -64,7 +68,7 @@ void PairSaltdemViscous::compute(int eflag, int vflag)
     loop<PairSaltdemViscous, 0>(this, 0, list->inum, atom->f, atom->torque, tally);
 }
 
-/* pair_style saltdem/viscous [calibration C] [dtfactor C] [viscfactor C] */
+/* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C] */
 
 void PairSaltdemViscous::settings(int narg, char **arg)
 {
@@ -73,7 +77,10 @@ void PairSaltdemViscous::settings(int narg, char **arg)
     if (iarg + 2 > narg)
       utils::missing_cmd_args(FLERR, fmt::format("pair_style saltdem/viscous {}", arg[iarg]), error);
     const double v = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-    if (strcmp(arg[iarg], "calibration") == 0) {
+    if (strcmp(arg[iarg], "correction") == 0) {
+      if (v <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: correction {} must be > 0", v);
+      correction = v;
+    } else if (strcmp(arg[iarg], "calibration") == 0) {
       if (v <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: calibration {} must be > 0", v);
       calibration = v;
     } else if (strcmp(arg[iarg], "dtfactor") == 0) {
@@ -86,7 +93,7 @@ void PairSaltdemViscous::settings(int narg, char **arg)
       viscfactor = v;
     } else
       error->all(FLERR,
-                 "Pair style saltdem/viscous: unknown keyword '{}' (expected: calibration, "
+                 "Pair style saltdem/viscous: unknown keyword '{}' (expected: correction, calibration, "
                  "dtfactor, viscfactor)",
                  arg[iarg]);
     iarg += 2;
@@ -110,7 +117,7 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
   p.eta = utils::numeric(FLERR, arg[2], false, lmp);
   p.kn = utils::numeric(FLERR, arg[3], false, lmp);
   if (p.eta <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: eta = {} must be > 0", p.eta);
-  if (p.kn <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: kn = {} must be > 0", p.kn);
+  if (p.kn < 0.0) error->all(FLERR, "Pair style saltdem/viscous: kn = {} must be >= 0", p.kn);
   p.ratio = 1.0;
 
   std::string kw = arg[4];
@@ -126,6 +133,9 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
     if (p.K < 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid K = {} must be >= 0", p.K);
   } else if (kw == "contact") {
     p.mode = SaltDEM::VISCOUS_CONTACT;
+    if (p.kn <= 0.0)
+      error->all(FLERR, "Pair style saltdem/viscous: contact kn = {} must be > 0 (a boundary needs "
+                 "its elastic repulsion)", p.kn);
     p.gap = utils::numeric(FLERR, arg[5], false, lmp);
     if (p.gap < 0.0) error->all(FLERR, "Pair style saltdem/viscous: contact gap = {} must be >= 0", p.gap);
     if (narg == 8 && strcmp(arg[6], "tangential") == 0) {
@@ -188,13 +198,29 @@ void PairSaltdemViscous::init_style()
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID) any_fluid = true;
   }
+  // the continuity density of fluid particles lives with the atoms
+  if (any_fluid) {
+    if (!modify->get_fix_by_id(RHO_FIX_ID))
+      modify->add_fix(fmt::format("{} all property/atom d_saltdem_rho writedata no", RHO_FIX_ID));
+    int flag, cols;
+    index_rho = atom->find_custom("saltdem_rho", flag, cols);
+    if (index_rho < 0 || flag != 1 || cols != 0)
+      error->all(FLERR, "Pair style saltdem/viscous: per-atom property d_saltdem_rho is missing");
+  }
   PairSaltdem::init_style();
 }
 
-/* FLUID: kernel density rho_i = sum_j m_j W(r_ij), self included, over
-   the FLUID pairs (summed over ghosts with newton on); then the volume
-   m/rho, the pressure P = K (rho/rho0 - 1) and a = m P / rho^2, sent to the
-   ghosts.  rho0 of each fluid type is its mean density at the first step. */
+/* FLUID density, volume and pressure.  The density of a fluid particle is
+   carried per atom (fix property/atom d_saltdem_rho, so it migrates and
+   restarts with the atom) and follows the continuity equation
+     d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
+   over the FLUID pairs (walls and cover included: moving boundaries compress
+   the fluid).  It starts at the reference rho0 of its type, the mean kernel
+   density sum_j m_j W_ij of that type at the first step, so the fluid starts
+   free of pressure.  A summed kernel density would instead drift upwards as
+   particles pair up (the mean of sum_j W grows while the volume does not).
+   Then the volume m / rho, the pressure P = K (rho / rho0 - 1) and
+   a = m P / rho^2, sent to the ghosts. */
 
 void PairSaltdemViscous::pre_loop()
 {
@@ -211,38 +237,37 @@ void PairSaltdemViscous::pre_loop()
     memory->create(rho, nmax, "pair:rho");
   }
   double **x = atom->x;
+  double **v = atom->v;
   double *m = atom->rmass;
   int *type = atom->type;
+  double *rhoc = atom->dvector[index_rho];
   const int dim = domain->dimension;
   const int newton_pair = force->newton_pair;
-  for (int i = 0; i < nall; i++) {
-    const int t = type[i];
-    const auto &p = params[t][t];
-    rho[i] = (i < nlocal && fluidself[t])
-        ? m[i] * SaltDEM::wendland_c2(dim, p.h, 0.0)
-        : 0.0;
-  }
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    const int *jlist = list->firstneigh[i];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const auto &p = params[type[i]][type[j]];
-      if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
-      const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-      const double w = SaltDEM::wendland_c2(dim, p.h, sqrt(dx * dx + dy * dy + dz * dz));
-      rho[i] += m[j] * w;
-      if (newton_pair || j < nlocal) rho[j] += m[i] * w;
-    }
-  }
-  if (newton_pair) comm->reverse_comm(this);
-
-  // reference density of each fluid type, once
   const int nt = atom->ntypes;
+
+  // reference density of each fluid type, once: mean kernel density
   bool need = false;
   for (int t = 1; t <= nt; t++)
     if (fluidself[t] && params[t][t].rho0 <= 0.0) need = true;
   if (need) {
+    for (int i = 0; i < nall; i++) {
+      const int t = type[i];
+      rho[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(dim, params[t][t].h, 0.0) : 0.0;
+    }
+    for (int ii = 0; ii < list->inum; ii++) {
+      const int i = list->ilist[ii];
+      const int *jlist = list->firstneigh[i];
+      for (int jj = 0; jj < list->numneigh[i]; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const auto &p = params[type[i]][type[j]];
+        if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+        const double w = SaltDEM::wendland_c2(dim, p.h, sqrt(dx * dx + dy * dy + dz * dz));
+        rho[i] += m[j] * w;
+        if (newton_pair || j < nlocal) rho[j] += m[i] * w;
+      }
+    }
+    if (newton_pair) comm->reverse_comm(this);
     std::vector<double> sum(2 * (nt + 1), 0.0), all(2 * (nt + 1));
     for (int i = 0; i < nlocal; i++) {
       sum[2 * type[i]] += rho[i];
@@ -253,25 +278,49 @@ void PairSaltdemViscous::pre_loop()
       if (fluidself[t] && params[t][t].rho0 <= 0.0 && all[2 * t + 1] > 0.0) {
         params[t][t].rho0 = all[2 * t] / all[2 * t + 1];
         if (comm->me == 0)
-          utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.6g}\n",
+          utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.15g}\n",
                          t, params[t][t].rho0);
       }
   }
+  for (int i = 0; i < nlocal; i++)
+    if (fluidself[type[i]] && rhoc[i] <= 0.0) rhoc[i] = params[type[i]][type[i]].rho0;
 
-  // a boundary particle (wall, cover) has no meaningful kernel density of
-  // its own: it gets the volume it would have at the fluid's reference density
+  // continuity (not during setup, like the history of the contact styles)
+  if (!update->setupflag) {
+    for (int i = 0; i < nall; i++) rho[i] = 0.0;
+    for (int ii = 0; ii < list->inum; ii++) {
+      const int i = list->ilist[ii];
+      const int *jlist = list->firstneigh[i];
+      for (int jj = 0; jj < list->numneigh[i]; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const auto &p = params[type[i]][type[j]];
+        if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+        const double s = 1.0 - 0.5 * sqrt(dx * dx + dy * dy + dz * dz) / p.h;
+        if (s <= 0.0) continue;
+        // v_ij . grad_i W_ij, with grad_i W = -cw (1 - r/2h)^3 (x_i - x_j)
+        const double vdotg = -p.cw * s * s * s *
+            ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz);
+        rho[i] += m[j] * vdotg;
+        if (newton_pair || j < nlocal) rho[j] += m[i] * vdotg;
+      }
+    }
+    if (newton_pair) comm->reverse_comm(this);
+    const double dt = update->dt;
+    for (int i = 0; i < nlocal; i++)
+      if (fluidself[type[i]]) rhoc[i] += dt * rho[i];
+  }
+
+  // a boundary particle (wall, cover) gets the volume it would have at the
+  // fluid's reference density
   double rhob = 0.0;
   for (int t = 1; t <= nt; t++)
     if (fluidself[t]) rhob = MAX(rhob, params[t][t].rho0);
   for (int i = 0; i < nlocal; i++) {
     const auto &p = params[type[i]][type[i]];
-    if (fluidself[type[i]])
-      vol[i] = (rho[i] > 0.0) ? m[i] / rho[i] : 0.0;
-    else
-      vol[i] = (rhob > 0.0) ? m[i] / rhob : 0.0;
-    apress[i] = (isfluid[type[i]] && p.rho0 > 0.0)
-        ? m[i] * p.K * (rho[i] / p.rho0 - 1.0) / (rho[i] * rho[i])
-        : 0.0;
+    const double r = fluidself[type[i]] ? rhoc[i] : rhob;
+    vol[i] = (r > 0.0) ? m[i] / r : 0.0;
+    apress[i] = (isfluid[type[i]] && p.rho0 > 0.0) ? m[i] * p.K * (r / p.rho0 - 1.0) / (r * r) : 0.0;
   }
   comm->forward_comm(this);
 }
@@ -320,7 +369,7 @@ double PairSaltdemViscous::init_one(int i, int j)
   const double cut = PairSaltdem::init_one(i, j);
   auto &p = params[i][j];
   p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
-  p.kfac = 2.0 * p.eta * p.cw;
+  p.kfac = 2.0 * correction * p.eta * p.cw;
   p.gn = calibration * p.eta;
   p.gt = p.ratio * p.gn;
   params[j][i] = p;
@@ -367,7 +416,8 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
       const double m = MIN(mmin[i], mmin[j]);
       const double e = eta[i][j];
       const auto &p = params[i][j];
-      consider(dtfactor * sqrt(m / p.kn),
+      if (p.kn > 0.0)
+        consider(dtfactor * sqrt(m / p.kn),
                fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
                            "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor));
       double lim;
@@ -375,7 +425,7 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
       if (p.mode == SaltDEM::VISCOUS_FLUID) {
         // V = 1/sum W is not known before the first step: bound it by the
         // disc volume over a packing fraction of 0.7
-        lim = viscfactor * MIN(mv[i], mv[j]) * 0.7 * p.h * p.h / (7.0 * e);
+        lim = viscfactor * MIN(mv[i], mv[j]) * 0.7 * p.h * p.h / (7.0 * correction * e);
         formula = fmt::format("dt < {} * S m h^2 / (7 eta V), V = disc/0.7, h = {:.6g}", viscfactor, p.h);
         // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
         if (p.K > 0.0) {
@@ -410,18 +460,20 @@ void PairSaltdemViscous::read_restart(FILE *fp)
 void PairSaltdemViscous::write_restart_settings(FILE *fp)
 {
   fwrite(&calibration, sizeof(double), 1, fp);
+  fwrite(&correction, sizeof(double), 1, fp);
   fwrite(&dtfactor, sizeof(double), 1, fp);
   fwrite(&viscfactor, sizeof(double), 1, fp);
 }
 
 void PairSaltdemViscous::read_restart_settings(FILE *fp)
 {
-  double buf[3];
-  if (comm->me == 0) utils::sfread(FLERR, buf, sizeof(double), 3, fp, nullptr, error);
-  MPI_Bcast(buf, 3, MPI_DOUBLE, 0, world);
+  double buf[4];
+  if (comm->me == 0) utils::sfread(FLERR, buf, sizeof(double), 4, fp, nullptr, error);
+  MPI_Bcast(buf, 4, MPI_DOUBLE, 0, world);
   calibration = buf[0];
-  dtfactor = buf[1];
-  viscfactor = buf[2];
+  correction = buf[1];
+  dtfactor = buf[2];
+  viscfactor = buf[3];
 }
 
 /* "eta": per type pair viscosity (dim 2), read and changed by fix adapt and

@@ -53,18 +53,23 @@ class PairSaltdemViscous : public PairSaltdem {
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
   static constexpr double DEFAULT_CALIBRATION = 1.0;
+  // FLUID mode: the Morris sum over a disordered polydisperse pack with volumes m/rho
+  // returns eta_eff = 0.955 eta (channel flows, h = 1.45 spacings); this restores eta
+  static constexpr double DEFAULT_CORRECTION = 1.047;
 
  protected:
   SaltDEM::ViscousParams **params;
   double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
   double *vol;        // FLUID: particle volume m / rho, owned and ghost atoms
   double *apress;     // FLUID: m P / rho^2 per atom (pressure term), owned and ghost atoms
-  double *rho;        // FLUID: kernel density sum_j m_j W_ij, owned atoms
+  double *rho;        // FLUID: work array (kernel density, then d rho / dt), owned and ghost atoms
+  int index_rho;      // FLUID: per-atom continuity density (fix property/atom d_saltdem_rho)
   int *fluidself;     // per type: its own pair is FLUID (kernel volume, reference density)
   int *isfluid;       // per type: FLUID with K > 0 (carries pressure)
   int nmax;           // allocated length of vol
   bool any_fluid;     // some type pair uses the FLUID law
   double calibration;
+  double correction;  // FLUID: Morris viscosity multiplied by this (measured, see above)
   double viscfactor;  // safety factor on the viscous stable dt
   bool dim2;          // 2D: discs
   double volfac;      // pi (2D) or 4 pi / 3 (3D)

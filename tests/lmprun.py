@@ -2,6 +2,8 @@
 import os
 import pathlib
 import re
+import shutil
+import subprocess
 
 import pytest
 
@@ -21,7 +23,7 @@ class Run:
     def __init__(self, proc, workdir):
         self.rc = proc.returncode
         self.out = proc.stdout + proc.stderr
-        self.workdir = workdir
+        self.workdir = pathlib.Path(workdir)
 
     def thermo(self, index=-1):
         """Thermo table number `index` (one per run command) as {column: [values]}."""
@@ -45,3 +47,43 @@ class Run:
             if "ERROR" in line:
                 return line
         return None
+
+
+def run_lmp(deck, workdir, np=1, omp=0, timeout=600, args=(), **variables):
+    """Run a deck text in workdir with -var NAME VALUE for each variable, on np MPI ranks
+    and omp OpenMP threads (-sf omp); returns a Run."""
+    workdir = pathlib.Path(workdir)
+    (workdir / "in.deck").write_text(deck)
+    cmd = [lmp_path(), "-in", "in.deck", "-log", "log.lammps", "-echo", "none"]
+    for k, v in variables.items():
+        cmd += ["-var", k, str(v)]
+    if omp:
+        cmd += ["-sf", "omp", "-pk", "omp", str(omp)]
+    cmd += list(args)
+    if np > 1:
+        mpirun = shutil.which("mpirun")
+        if mpirun is None:
+            pytest.fail("mpirun not found: install openmpi-bin (scripts/setup.sh)")
+        extra = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+        cmd = [mpirun, *extra, "--oversubscribe", "-np", str(np), *cmd]
+    # passive waiting: threads on a busy 2-core machine otherwise spin
+    env = dict(os.environ, OMP_NUM_THREADS=str(omp or 1), OMP_WAIT_POLICY="passive")
+    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout,
+                          env=env)
+    return Run(proc, workdir)
+
+
+def check_ok(run):
+    assert run.rc == 0, f"lmp failed (rc={run.rc}): {run.error()}\n{run.out[-2000:]}"
+
+
+def assert_error(r, *words):
+    """A clean LAMMPS error (no crash) whose ERROR line holds every word; returns the line."""
+    assert r.rc > 0, f"expected a clean error exit, got rc={r.rc}\n{r.out[-1500:]}"
+    assert "Segmentation" not in r.out and "signal" not in r.out.lower()
+    line = r.error()
+    assert line is not None and line.startswith("ERROR"), r.out[-1500:]
+    for w in words:
+        assert w in line, f"'{w}' not in: {line}"
+    return line
+

@@ -19,6 +19,8 @@ import re
 
 import pytest
 
+from lmprun import assert_error, check_ok
+
 RHO = 2200.0
 
 
@@ -65,10 +67,6 @@ def read_dump(path):
 def max_diff(a, b, cols=(0, 1)):
     assert a.keys() == b.keys()
     return max(abs(a[i][c] - b[i][c]) for i in a for c in cols)
-
-
-def check_ok(run):
-    assert run.rc == 0, f"lmp failed (rc={run.rc}): {run.error()}\n{run.out[-2000:]}"
 
 
 # ---------------------------------------------------------------------------
@@ -592,16 +590,6 @@ def run_err(lmp, np=1, **kw):
              integ="nve/sphere disc", pc1="* * 1e8 3e7 0.5 1e4 2e4 0.01", pc2=GOOD, dt=1e-4)
     v.update(kw)
     return lmp(ERRDECK, np=np, **v)
-
-
-def assert_error(r, *words):
-    assert r.rc > 0, f"expected a clean error exit, got rc={r.rc}\n{r.out[-1500:]}"
-    assert "Segmentation" not in r.out and "signal" not in r.out.lower()
-    line = r.error()
-    assert line is not None and line.startswith("ERROR"), r.out[-1500:]
-    for w in words:
-        assert w in line, f"'{w}' not in: {line}"
-    return line
 
 
 def test_good_deck_runs(lmp):

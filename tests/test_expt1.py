@@ -1,6 +1,5 @@
 """Experiment 1 deck, tiny: the scene assembles, faults, dumps markers; post-processing renders it."""
 import os
-import pathlib
 import subprocess
 
 import numpy as np

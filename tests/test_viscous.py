@@ -30,16 +30,12 @@ Section 0 checks the forces against an independent numpy implementation of
 the equations of docs/pair_saltdem_viscous.rst.
 """
 import math
-import os
-import pathlib
 import re
-import shutil
-import subprocess
 
 import numpy as np
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+from lmprun import ROOT, assert_error, check_ok, run_lmp
 CHANNEL = (ROOT / "tests" / "decks" / "channel.in").read_text()
 PARAMS = ROOT / "potentials" / "salt_paper.params"
 PACK_IN = ROOT / "tools" / "pack.in"
@@ -69,66 +65,6 @@ REYNOLDS_MAX = 0.05       # rho S V H / eta: above it inertia changes the flow
 # running LAMMPS (module-scoped runs; the `lmp` fixture of conftest.py is
 # function-scoped)
 # ---------------------------------------------------------------------------
-
-def lmp_exe():
-    exe = os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
-    if not os.path.isfile(exe):
-        pytest.fail(f"no LAMMPS executable at {exe}: build it first or set SALTDEM_LMP")
-    return exe
-
-
-class Run:
-    def __init__(self, proc, workdir):
-        self.rc = proc.returncode
-        self.out = proc.stdout + proc.stderr
-        self.workdir = pathlib.Path(workdir)
-
-    def thermo(self, index=-1):
-        tables, cols, rows = [], None, None
-        for line in self.out.splitlines():
-            s = line.split()
-            if s and s[0] == "Step":
-                cols, rows = s, []
-            elif cols is not None and s and re.fullmatch(r"-?\d+", s[0]) and len(s) == len(cols):
-                rows.append([float(v) for v in s])
-            elif cols is not None and line.startswith("Loop time"):
-                tables.append({c: [r[k] for r in rows] for k, c in enumerate(cols)})
-                cols = None
-        if not tables:
-            raise AssertionError("no thermo output in:\n" + self.out[-3000:])
-        return tables[index]
-
-    def error(self):
-        for line in self.out.splitlines():
-            if "ERROR" in line:
-                return line
-        return None
-
-
-def run_lmp(deck, workdir, np=1, omp=0, timeout=600, **variables):
-    workdir = pathlib.Path(workdir)
-    (workdir / "in.deck").write_text(deck)
-    cmd = [lmp_exe(), "-in", "in.deck", "-log", "log.lammps", "-echo", "none"]
-    for k, v in variables.items():
-        cmd += ["-var", k, str(v)]
-    if omp:
-        cmd += ["-sf", "omp", "-pk", "omp", str(omp)]
-    if np > 1:
-        mpirun = shutil.which("mpirun")
-        if mpirun is None:
-            pytest.fail("mpirun not found")
-        extra = ["--allow-run-as-root"] if os.geteuid() == 0 else []
-        cmd = [mpirun, *extra, "--oversubscribe", "-np", str(np), *cmd]
-    # passive waiting: 2 threads on a busy 2-core machine
-    env = dict(os.environ, OMP_NUM_THREADS=str(omp or 1), OMP_WAIT_POLICY="passive")
-    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout,
-                          env=env)
-    return Run(proc, workdir)
-
-
-def check_ok(run):
-    assert run.rc == 0, f"lmp failed (rc={run.rc}): {run.error()}\n{run.out[-2000:]}"
-
 
 def read_dump(path):
     """{id: [columns after id]} from a text dump written with 'modify sort id'."""
@@ -633,16 +569,6 @@ timestep {dt}
 thermo 5
 run {nrun}
 """
-
-
-def assert_error(r, *words):
-    assert r.rc > 0, f"expected a clean error exit, got rc={r.rc}\n{r.out[-1500:]}"
-    assert "Segmentation" not in r.out and "signal" not in r.out.lower()
-    line = r.error()
-    assert line is not None and line.startswith("ERROR"), r.out[-1500:]
-    for w in words:
-        assert w in line, f"'{w}' not in: {line}"
-    return line
 
 
 def limit_in(line):

@@ -67,55 +67,46 @@ void FixSaltdemNVE::reset_dt()
   dtf = 0.5 * update->dt * force->ftm2v;
 }
 
-/* one half-kick of v and omega and the drift of x */
+/* half-kick of v and omega of atom i (forces and torques over S m and S I) */
+
+inline void FixSaltdemNVE::kick(int i, double dtfs, double dtir)
+{
+  double **v = atom->v, **f = atom->f;
+  double **omega = atom->omega, **torque = atom->torque;
+  const double dtfm = dtfs / atom->rmass[i];
+  v[i][0] += dtfm * f[i][0];
+  v[i][1] += dtfm * f[i][1];
+  v[i][2] += dtfm * f[i][2];
+  const double dtirotate = dtir / (atom->rmass[i] * atom->radius[i] * atom->radius[i]);
+  omega[i][0] += dtirotate * torque[i][0];
+  omega[i][1] += dtirotate * torque[i][1];
+  omega[i][2] += dtirotate * torque[i][2];
+}
+
+/* half-kick, then drift of x */
 
 void FixSaltdemNVE::initial_integrate(int)
 {
-  double **x = atom->x, **v = atom->v, **f = atom->f;
-  double **omega = atom->omega, **torque = atom->torque;
-  double *radius = atom->radius, *rmass = atom->rmass;
+  double **x = atom->x, **v = atom->v;
   int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
   const double dtfs = dtf / inertia;
   const double dtir = dtfs / inertia_factor;
-
-  for (int i = 0; i < nlocal; i++) {
+  for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const double dtfm = dtfs / rmass[i];
-    v[i][0] += dtfm * f[i][0];
-    v[i][1] += dtfm * f[i][1];
-    v[i][2] += dtfm * f[i][2];
+    kick(i, dtfs, dtir);
     x[i][0] += dtv * v[i][0];
     x[i][1] += dtv * v[i][1];
     x[i][2] += dtv * v[i][2];
-    const double dtirotate = dtir / (rmass[i] * radius[i] * radius[i]);
-    omega[i][0] += dtirotate * torque[i][0];
-    omega[i][1] += dtirotate * torque[i][1];
-    omega[i][2] += dtirotate * torque[i][2];
   }
 }
 
 void FixSaltdemNVE::final_integrate()
 {
-  double **v = atom->v, **f = atom->f;
-  double **omega = atom->omega, **torque = atom->torque;
-  double *radius = atom->radius, *rmass = atom->rmass;
   int *mask = atom->mask;
-  const int nlocal = atom->nlocal;
   const double dtfs = dtf / inertia;
   const double dtir = dtfs / inertia_factor;
-
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const double dtfm = dtfs / rmass[i];
-    v[i][0] += dtfm * f[i][0];
-    v[i][1] += dtfm * f[i][1];
-    v[i][2] += dtfm * f[i][2];
-    const double dtirotate = dtir / (rmass[i] * radius[i] * radius[i]);
-    omega[i][0] += dtirotate * torque[i][0];
-    omega[i][1] += dtirotate * torque[i][1];
-    omega[i][2] += dtirotate * torque[i][2];
-  }
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) kick(i, dtfs, dtir);
   if (check_every && update->ntimestep % check_every == 0) check_finite();
 }
 

@@ -47,6 +47,21 @@ class PairSaltdem : public Pair {
   template <class Derived, int EVFLAG, class Tally>
   void loop(Derived *self, int ifrom, int ito, double **f, double **torque, Tally &&tally);
 
+  // the serial compute() of a derived style: pre_loop(), then the loop over all pairs
+  template <class Derived> void compute_serial(Derived *self, int eflag, int vflag)
+  {
+    ev_init(eflag, vflag);
+    pre_loop();
+    auto tally = [this](int i, int j, double e, double fx, double fy, double fz, double dx,
+                        double dy, double dz) {
+      ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
+    };
+    if (evflag)
+      loop<Derived, 1>(self, 0, list->inum, atom->f, atom->torque, tally);
+    else
+      loop<Derived, 0>(self, 0, list->inum, atom->f, atom->torque, tally);
+  }
+
  protected:
   const char *name;            // style name for messages (force->pair_style may be hybrid)
   const char *hist_id;         // id stem of the FixNeighHistory (nullptr: law has no history)

@@ -42,15 +42,7 @@ void PairSaltdemCohesive::allocate_params(int n)
 
 void PairSaltdemCohesive::compute(int eflag, int vflag)
 {
-  ev_init(eflag, vflag);
-  auto tally = [this](int i, int j, double e, double fx, double fy, double fz, double dx,
-                      double dy, double dz) {
-    ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
-  };
-  if (evflag)
-    loop<PairSaltdemCohesive, 1>(this, 0, list->inum, atom->f, atom->torque, tally);
-  else
-    loop<PairSaltdemCohesive, 0>(this, 0, list->inum, atom->f, atom->torque, tally);
+  compute_serial(this, eflag, vflag);
 }
 
 /* pair_style saltdem/cohesive [dtfactor C] */

@@ -56,16 +56,7 @@ void PairSaltdemViscous::allocate_params(int n)
 
 void PairSaltdemViscous::compute(int eflag, int vflag)
 {
-  ev_init(eflag, vflag);
-  pre_loop();
-  auto tally = [this](int i, int j, double e, double fx, double fy, double fz, double dx,
-                      double dy, double dz) {
-    ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
-  };
-  if (evflag)
-    loop<PairSaltdemViscous, 1>(this, 0, list->inum, atom->f, atom->torque, tally);
-  else
-    loop<PairSaltdemViscous, 0>(this, 0, list->inum, atom->f, atom->torque, tally);
+  compute_serial(this, eflag, vflag);
 }
 
 /* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C] */
@@ -210,6 +201,32 @@ void PairSaltdemViscous::init_style()
   PairSaltdem::init_style();
 }
 
+/* rho[i] += m_j q(i, j), rho[j] += m_i q(i, j) over the FLUID pairs of the
+   list (q symmetric under i <-> j), summed onto the owners with newton on */
+
+template <class Q> void PairSaltdemViscous::sum_fluid_pairs(Q &&q)
+{
+  double **x = atom->x;
+  double *m = atom->rmass;
+  int *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *jlist = list->firstneigh[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const auto &p = params[type[i]][type[j]];
+      if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
+      const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
+      const double w = q(i, j, p, d);
+      rho[i] += m[j] * w;
+      if (newton_pair || j < nlocal) rho[j] += m[i] * w;
+    }
+  }
+  if (newton_pair) comm->reverse_comm(this);
+}
+
 /* FLUID density, volume and pressure.  The density of a fluid particle is
    carried per atom (fix property/atom d_saltdem_rho, so it migrates and
    restarts with the atom) and follows the continuity equation
@@ -236,13 +253,11 @@ void PairSaltdemViscous::pre_loop()
     memory->create(apress, nmax, "pair:apress");
     memory->create(rho, nmax, "pair:rho");
   }
-  double **x = atom->x;
   double **v = atom->v;
   double *m = atom->rmass;
   int *type = atom->type;
   double *rhoc = atom->dvector[index_rho];
   const int dim = domain->dimension;
-  const int newton_pair = force->newton_pair;
   const int nt = atom->ntypes;
 
   // reference density of each fluid type, once: mean kernel density
@@ -254,20 +269,9 @@ void PairSaltdemViscous::pre_loop()
       const int t = type[i];
       rho[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(dim, params[t][t].h, 0.0) : 0.0;
     }
-    for (int ii = 0; ii < list->inum; ii++) {
-      const int i = list->ilist[ii];
-      const int *jlist = list->firstneigh[i];
-      for (int jj = 0; jj < list->numneigh[i]; jj++) {
-        const int j = jlist[jj] & NEIGHMASK;
-        const auto &p = params[type[i]][type[j]];
-        if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
-        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-        const double w = SaltDEM::wendland_c2(dim, p.h, sqrt(dx * dx + dy * dy + dz * dz));
-        rho[i] += m[j] * w;
-        if (newton_pair || j < nlocal) rho[j] += m[i] * w;
-      }
-    }
-    if (newton_pair) comm->reverse_comm(this);
+    sum_fluid_pairs([&](int, int, const SaltDEM::ViscousParams &p, const double *d) {
+      return SaltDEM::wendland_c2(dim, p.h, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    });
     std::vector<double> sum(2 * (nt + 1), 0.0), all(2 * (nt + 1));
     for (int i = 0; i < nlocal; i++) {
       sum[2 * type[i]] += rho[i];
@@ -288,24 +292,13 @@ void PairSaltdemViscous::pre_loop()
   // continuity (not during setup, like the history of the contact styles)
   if (!update->setupflag) {
     for (int i = 0; i < nall; i++) rho[i] = 0.0;
-    for (int ii = 0; ii < list->inum; ii++) {
-      const int i = list->ilist[ii];
-      const int *jlist = list->firstneigh[i];
-      for (int jj = 0; jj < list->numneigh[i]; jj++) {
-        const int j = jlist[jj] & NEIGHMASK;
-        const auto &p = params[type[i]][type[j]];
-        if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
-        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-        const double s = 1.0 - 0.5 * sqrt(dx * dx + dy * dy + dz * dz) / p.h;
-        if (s <= 0.0) continue;
-        // v_ij . grad_i W_ij, with grad_i W = -cw (1 - r/2h)^3 (x_i - x_j)
-        const double vdotg = -p.cw * s * s * s *
-            ((v[i][0] - v[j][0]) * dx + (v[i][1] - v[j][1]) * dy + (v[i][2] - v[j][2]) * dz);
-        rho[i] += m[j] * vdotg;
-        if (newton_pair || j < nlocal) rho[j] += m[i] * vdotg;
-      }
-    }
-    if (newton_pair) comm->reverse_comm(this);
+    sum_fluid_pairs([&](int i, int j, const SaltDEM::ViscousParams &p, const double *d) {
+      const double s = 1.0 - 0.5 * sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / p.h;
+      if (s <= 0.0) return 0.0;
+      // v_ij . grad_i W_ij, with grad_i W = -cw (1 - r/2h)^3 (x_i - x_j)
+      return -p.cw * s * s * s *
+          ((v[i][0] - v[j][0]) * d[0] + (v[i][1] - v[j][1]) * d[1] + (v[i][2] - v[j][2]) * d[2]);
+    });
     const double dt = update->dt;
     for (int i = 0; i < nlocal; i++)
       if (fluidself[type[i]]) rhoc[i] += dt * rho[i];

@@ -74,6 +74,7 @@ class PairSaltdemViscous : public PairSaltdem {
   bool dim2;          // 2D: discs
   double volfac;      // pi (2D) or 4 pi / 3 (3D)
 
+  template <class Q> void sum_fluid_pairs(Q &&q);
   void allocate_params(int) override;
   void *pair_params(int i, int j) override { return &params[i][j]; }
   size_t params_size() const override { return sizeof(SaltDEM::ViscousParams); }

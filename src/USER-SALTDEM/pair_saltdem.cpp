@@ -75,11 +75,15 @@ void PairSaltdem::allocate()
   allocate_params(n);
 }
 
-/* parse the I,J type ranges of pair_coeff, allocating on first use */
+/* check the argument count of pair_coeff and parse its I,J type ranges,
+   allocating on first use */
 
-void PairSaltdem::check_types(int narg, char **arg, int &ilo, int &ihi, int &jlo, int &jhi)
+void PairSaltdem::check_types(int narg, char **arg, int nmin, const char *usage, int &ilo,
+                              int &ihi, int &jlo, int &jhi)
 {
-  if (narg < 2) utils::missing_cmd_args(FLERR, "pair_coeff", error);
+  if (narg < nmin)
+    error->all(FLERR, "Pair style {}: pair_coeff needs {} or more arguments, got {}: {}", name,
+               nmin, narg, usage);
   if (!allocated) allocate();
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);

@@ -87,7 +87,8 @@ class PairSaltdem : public Pair {
   virtual double stable_dt(const double *mmin, std::string &why) = 0;
   void min_inertial_mass(double *mmin);
   double inertia_scale(int i);
-  void check_types(int narg, char **arg, int &ilo, int &ihi, int &jlo, int &jhi);
+  void check_types(int narg, char **arg, int nmin, const char *usage, int &ilo, int &ihi,
+                   int &jlo, int &jhi);
 };
 
 template <class Derived, int EVFLAG, class Tally>

@@ -69,11 +69,8 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
 {
   const char *usage = "pair_coeff I J kn kt mu cohesion tensile range [damp zeta_n zeta_t] "
                       "[rolling kr mu_r]";
-  if (narg < 8)
-    error->all(FLERR, "Pair style saltdem/cohesive: pair_coeff needs 8 or more arguments, got {}: {}",
-               narg, usage);
   int ilo, ihi, jlo, jhi;
-  check_types(narg, arg, ilo, ihi, jlo, jhi);
+  check_types(narg, arg, 8, usage, ilo, ihi, jlo, jhi);
 
   SaltDEM::CohesiveParams p{};
   p.kn = utils::numeric(FLERR, arg[2], false, lmp);

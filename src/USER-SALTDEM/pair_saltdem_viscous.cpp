@@ -98,11 +98,8 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
 {
   const char *usage =
       "pair_coeff I J eta kn fluid h K  or  pair_coeff I J eta kn contact gap [tangential R]";
-  if (narg < 6)
-    error->all(FLERR, "Pair style saltdem/viscous: pair_coeff needs 6 or more arguments, got {}: {}",
-               narg, usage);
   int ilo, ihi, jlo, jhi;
-  check_types(narg, arg, ilo, ihi, jlo, jhi);
+  check_types(narg, arg, 6, usage, ilo, ihi, jlo, jhi);
 
   SaltDEM::ViscousParams p{};
   p.eta = utils::numeric(FLERR, arg[2], false, lmp);

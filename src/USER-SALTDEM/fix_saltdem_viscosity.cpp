@@ -1,0 +1,168 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   fix saltdem/viscosity: viscosity scaling (Hardy's section 2.1).  The
+   model runs with eta_model = eta_natural / lambda, so its velocities are
+   lambda times the natural ones, its time 1/lambda of the natural time, and
+   Re_model = lambda^2 Re_natural.  The fix sets the viscosity of every type
+   pair of pair style saltdem/viscous (through Pair::extract("eta")) and
+   reports the numbers that tie the model to nature.
+------------------------------------------------------------------------- */
+
+#include "fix_saltdem_viscosity.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "pair.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+static constexpr double YEAR = 365.25 * 24.0 * 3600.0;
+
+FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), lambda(0.0), eta_model(0.0), eta_natural(0.0), rate(0.0), length(0.0),
+    density(0.0), inertia(1.0), warn_re(0.1), t0(0.0)
+{
+  const char *usage = "fix ID group saltdem/viscosity lambda L (natural eta | model eta) "
+                      "rate V length L density rho [inertia S] [warn Re]";
+  if (narg < 5) utils::missing_cmd_args(FLERR, "fix saltdem/viscosity", error);
+  if (strcmp(arg[3], "lambda") != 0)
+    error->all(FLERR, "Fix saltdem/viscosity: expected 'lambda' after the style, got '{}'; usage: {}",
+               arg[3], usage);
+  lambda = utils::numeric(FLERR, arg[4], false, lmp);
+  if (lambda <= 0.0) error->all(FLERR, "Fix saltdem/viscosity: lambda = {} must be > 0", lambda);
+
+  int iarg = 5;
+  while (iarg < narg) {
+    if (iarg + 2 > narg)
+      utils::missing_cmd_args(FLERR, fmt::format("fix saltdem/viscosity {}", arg[iarg]), error);
+    const std::string kw = arg[iarg];
+    const double v = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    auto positive = [&](double x) {
+      if (x <= 0.0) error->all(FLERR, "Fix saltdem/viscosity: {} = {} must be > 0", kw, x);
+      return x;
+    };
+    if (kw == "natural") eta_natural = positive(v);
+    else if (kw == "model") eta_model = positive(v);
+    else if (kw == "rate") rate = positive(v);
+    else if (kw == "length") length = positive(v);
+    else if (kw == "density") density = positive(v);
+    else if (kw == "inertia") {
+      if (v < 1.0) error->all(FLERR, "Fix saltdem/viscosity: inertia = {} must be >= 1", v);
+      inertia = v;
+    } else if (kw == "warn") warn_re = positive(v);
+    else
+      error->all(FLERR, "Fix saltdem/viscosity: unknown keyword '{}'; usage: {}", kw, usage);
+    iarg += 2;
+  }
+  if ((eta_natural > 0.0) == (eta_model > 0.0))
+    error->all(FLERR, "Fix saltdem/viscosity: give exactly one of 'natural' and 'model'; usage: {}",
+               usage);
+  for (auto &need : {std::make_pair("rate", rate), std::make_pair("length", length),
+                     std::make_pair("density", density)})
+    if (need.second <= 0.0)
+      error->all(FLERR, "Fix saltdem/viscosity: keyword '{}' is required; usage: {}", need.first,
+                 usage);
+  if (eta_natural > 0.0) eta_model = eta_natural / lambda;
+  else eta_natural = eta_model * lambda;
+
+  // set the viscosity of the salt's pair style now, so that the next run
+  // (and its stable time step check) uses it
+  Pair *pair = force->pair_match("saltdem/viscous", 0);
+  int dim = 0;
+  auto eta = pair ? (double **) pair->extract("eta", dim) : nullptr;
+  if (!eta || dim != 2)
+    error->all(FLERR, "Fix saltdem/viscosity needs pair style saltdem/viscous (alone or in "
+               "pair_style hybrid) with its coefficients set before the fix is defined");
+  int count = 0;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (pair->setflag && pair->setflag[i][j]) {
+        eta[i][j] = eta[j][i] = eta_model;
+        count++;
+      }
+  if (count == 0)
+    error->all(FLERR, "Fix saltdem/viscosity: pair style saltdem/viscous has no coefficients set");
+
+  t0 = model_time();
+  vector_flag = 1;
+  size_vector = 7;
+  global_freq = 1;
+  extvector = 0;
+  restart_global = 1;
+
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "fix saltdem/viscosity: lambda {:.4g}: viscosity model {:.4g} Pa s, natural "
+                   "{:.4g} Pa s (set on {} type pairs)\n"
+                   "  driving rate model {:.4g} m/s, natural {:.4g} m/s = {:.4g} m/ka; length "
+                   "{:.4g} m, density {:.4g} kg/m^3, inertia x{:.4g}\n"
+                   "  Reynolds number model {:.3g}, natural {:.3g}; strain rate model {:.3g} 1/s, "
+                   "natural {:.3g} 1/s\n"
+                   "  1 s of model time is {:.4g} years of natural time\n",
+                   lambda, eta_model, eta_natural, count, rate, rate / lambda,
+                   rate / lambda * YEAR * 1000.0, length, density, inertia, reynolds_model(),
+                   density * (rate / lambda) * length / eta_natural, rate / length,
+                   rate / (lambda * length), lambda / YEAR);
+}
+
+int FixSaltdemViscosity::setmask()
+{
+  return 0;
+}
+
+void FixSaltdemViscosity::init()
+{
+  const double re = reynolds_model();
+  if (re > warn_re && comm->me == 0)
+    error->warning(FLERR,
+                   "Fix saltdem/viscosity: the model Reynolds number {:.3g} (rho S V L / eta) "
+                   "exceeds {:.3g}: inertia is no longer negligible, the flow is not the scaled "
+                   "natural flow. Lower the rate, the inertia factor or lambda",
+                   re, warn_re);
+}
+
+double FixSaltdemViscosity::model_time() const
+{
+  return update->atime + (update->ntimestep - update->atimestep) * update->dt;
+}
+
+/* 1 Re_model (with the inertia factor), 2 Re_natural, 3 model time since
+   the fix (s), 4 natural time since the fix (years), 5 natural rate (m/ka),
+   6 model strain rate V/L (1/s), 7 natural strain rate (1/s) */
+
+double FixSaltdemViscosity::compute_vector(int n)
+{
+  switch (n) {
+    case 0: return reynolds_model();
+    case 1: return density * (rate / lambda) * length / eta_natural;
+    case 2: return model_time() - t0;
+    case 3: return lambda * (model_time() - t0) / YEAR;
+    case 4: return rate / lambda * YEAR * 1000.0;
+    case 5: return rate / length;
+    case 6: return rate / (lambda * length);
+  }
+  return 0.0;
+}
+
+/* the natural clock continues across restarts */
+
+void FixSaltdemViscosity::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    int size = sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&t0, sizeof(double), 1, fp);
+  }
+}
+
+void FixSaltdemViscosity::restart(char *buf)
+{
+  memcpy(&t0, buf, sizeof(double));
+}

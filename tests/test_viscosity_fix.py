@@ -1,0 +1,115 @@
+"""fix saltdem/viscosity: viscosity scaling by lambda (paper section 2.1, Tables 1 and 2)."""
+import re
+
+import pytest
+
+from lmprun import ROOT, assert_error, check_ok
+
+TABLE_DECK = (ROOT / "examples" / "scaling" / "table1.in").read_text()
+
+# the paper's Tables 1 and 2: model | natural
+PAPER = {
+    1: {"total time (days)": ("0.231", None), "total time (years)": ("0.000634", "6.34e+05"),
+        "displacement rate (m/s)": ("0.05", "5e-11"), "displacement rate (m/ka)": (None, "1.58"),
+        "Reynolds number": ("0.00022", "2.2e-22"), "salt viscosity (Pa s)": ("5e+08", "5e+17")},
+    2: {"total time (days)": ("1.16", None), "total time (years)": ("0.00317", "3.17e+06"),
+        "displacement rate (m/s)": ("0.01", "1e-11"), "displacement rate (m/ka)": (None, "0.316"),
+        "Reynolds number": ("4.4e-05", "4.4e-23")},
+}
+
+
+@pytest.mark.parametrize("table", [1, 2])
+def test_paper_tables(lmp, table):
+    r = lmp(TABLE_DECK, table=table)
+    check_ok(r)
+    rows = {}
+    for line in r.out.splitlines():
+        m = re.match(rf"TABLE {table}: (.+?)\s{{2,}}(\S+) \| (\S+)", line)
+        if m:
+            rows[m.group(1)] = (m.group(2), m.group(3))
+    for name, (model, natural) in PAPER[table].items():
+        if model:
+            assert float(rows[name][0]) == pytest.approx(float(model), rel=2e-3), name
+        if natural:
+            assert float(rows[name][1]) == pytest.approx(float(natural), rel=2e-3), name
+
+
+BASE = """
+units si
+dimension 2
+atom_style sphere
+boundary p p p
+comm_modify vel yes
+region box block 0 200 0 200 -100 100
+create_box 1 box
+lattice sq 20
+create_atoms 1 box
+set type 1 diameter 20
+set type 1 density/disc 2200
+pair_style saltdem/viscous
+pair_coeff * * 1.0 0 fluid 28 1e8
+fix nve all saltdem/nve
+timestep ${dt}
+"""
+FIX = "fix scale all saltdem/viscosity lambda 1e9 natural 5e17 rate 0.05 length 1000 density 2200"
+
+
+def test_sets_the_pair_viscosity(lmp):
+    """natural 5e17 / lambda 1e9: the pair now has eta 5e8, which its time step check names."""
+    line = assert_error(lmp(BASE + FIX + "\nrun 1\n", dt=1.0), "saltdem/viscous", "eta = 5e+08")
+    assert "types 1 1" in line
+
+
+def test_natural_time_runs_and_survives_restart(lmp, tmp_path):
+    deck = BASE + FIX + """
+thermo_style custom step time f_scale[3] f_scale[4]
+run 100
+write_restart r.restart
+clear
+read_restart r.restart
+comm_modify vel yes
+fix nve all saltdem/nve
+""" + FIX + """
+timestep ${dt}
+thermo_style custom step time f_scale[3] f_scale[4]
+run 100
+"""
+    r = lmp(deck, dt=1e-5)
+    check_ok(r)
+    a, b = r.thermo(0), r.thermo(1)
+    assert a["f_scale[3]"][-1] == pytest.approx(100 * 1e-5)
+    year = 365.25 * 86400
+    assert a["f_scale[4]"][-1] == pytest.approx(1e9 * 1e-3 / year)
+    # the natural clock continues after read_restart
+    assert b["f_scale[3]"][-1] == pytest.approx(200 * 1e-5)
+    assert b["f_scale[4]"][-1] == pytest.approx(1e9 * 2e-3 / year)
+
+
+def test_warns_when_inertia_matters(lmp):
+    fast = FIX.replace("rate 0.05", "rate 50")    # Re = 2200 * 50 * 1000 / 5e8 = 0.22
+    r = lmp(BASE + fast + "\nrun 0\n", dt=1e-6)
+    check_ok(r)
+    assert re.search(r"WARNING: Fix saltdem/viscosity: the model Reynolds number 0.22 ", r.out)
+    r = lmp(BASE + FIX + "\nrun 0\n", dt=1e-6)
+    assert "Reynolds number" not in (r.error() or "") and "WARNING: Fix saltdem/viscosity" not in r.out
+
+
+@pytest.mark.parametrize("args,words", [
+    ("lambda 1e9 rate 0.05 length 1000 density 2200", ["exactly one of 'natural' and 'model'"]),
+    ("lambda 1e9 natural 5e17 model 5e8 rate 0.05 length 1000 density 2200", ["exactly one"]),
+    ("lambda 1e9 natural 5e17 rate 0.05 density 2200", ["'length' is required"]),
+    ("lambda -1 natural 5e17 rate 0.05 length 1000 density 2200", ["lambda = -1"]),
+    ("lambda 1e9 natural 5e17 rate 0.05 length 1000 density 2200 bogus 1", ["unknown keyword 'bogus'"]),
+    ("lambda 1e9 natural 5e17 rate 0.05 length 1000 density 2200 inertia 0.5", ["inertia = 0.5"]),
+    ("scale 1e9 natural 5e17", ["expected 'lambda'"]),
+    ("lambda 1e9 natural", ["saltdem/viscosity natural"]),
+])
+def test_errors(lmp, args, words):
+    r = lmp(BASE + f"fix scale all saltdem/viscosity {args}\nrun 0\n", dt=1e-6)
+    assert_error(r, "saltdem/viscosity", *words)
+
+
+def test_needs_the_viscous_pair(lmp):
+    deck = BASE.replace("pair_style saltdem/viscous\npair_coeff * * 1.0 0 fluid 28 1e8",
+                        "pair_style saltdem/cohesive\npair_coeff * * 1e9 0 0.5 0 0 0")
+    assert_error(lmp(deck + FIX + "\nrun 0\n", dt=1e-6), "saltdem/viscosity", "saltdem/viscous")

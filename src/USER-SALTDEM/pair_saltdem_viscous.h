@@ -64,7 +64,7 @@ class PairSaltdemViscous : public PairSaltdem {
   double *apress;     // FLUID: m P / rho^2 per atom (pressure term), owned and ghost atoms
   double *rho;        // FLUID: work array (kernel density, then d rho / dt), owned and ghost atoms
   int index_rho;      // FLUID: per-atom continuity density (fix property/atom d_saltdem_rho)
-  int *fluidself;     // per type: its own pair is FLUID (kernel volume, reference density)
+  int *fluidself;     // per type: its own pair is FLUID (continuity density, reference density)
   int *isfluid;       // per type: FLUID with K > 0 (carries pressure)
   int nmax;           // allocated length of vol
   bool any_fluid;     // some type pair uses the FLUID law

@@ -229,10 +229,11 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
    - FLUID (salt-salt): the Morris et al. (1997) SPH viscosity, a dashpot on
      the full relative velocity whose coefficient is a smooth kernel of the
      distance, summed over all neighbours within 2h, with particle volumes
-     V = 1/sum_j W from the kernel itself.  It discretises eta * laplacian(v),
-     so the emergent viscosity is eta whatever the local packing, and it is
-     linear in the velocities: Newtonian by construction.  Elastic repulsion
-     of touching discs carries the load.
+     V = m/rho (rho: the per-atom continuity density of the style).  It
+     discretises eta * laplacian(v) and is linear in the velocities:
+     Newtonian by construction.  An SPH pressure P = K (rho/rho0 - 1)
+     carries the load without granular friction; an optional elastic core
+     kn acts between touching discs.
    - CONTACT (boundaries: salt-wall, cover-salt, cover-wall): elastic
      repulsion plus normal and tangential dashpots at the contact point,
      within a small gap; a stiff tangential dashpot makes the interface

@@ -4,7 +4,7 @@ import subprocess
 from lmprun import lmp_path
 
 STYLES = ["saltdem/cohesive", "saltdem/cohesive/omp", "saltdem/viscous", "saltdem/viscous/omp",
-          "saltdem/nve", "saltdem/viscosity"]
+          "saltdem/nve", "saltdem/viscosity", "saltdem/fault"]
 
 DECK = """
 units si

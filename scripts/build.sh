@@ -8,5 +8,6 @@ gen=()
 if [ ! -f build/CMakeCache.txt ] && command -v ninja >/dev/null; then gen=(-G Ninja); fi
 cmake -S . -B build "${gen[@]}" "$@"
 cmake --build build
-build/lmp -h | grep -q "USER-SALTDEM" || { echo "build: lmp lacks USER-SALTDEM" >&2; exit 1; }
+# grep -c reads all of the output: grep -q would stop early and lmp die of SIGPIPE (pipefail)
+build/lmp -h | grep -c "USER-SALTDEM" > /dev/null || { echo "build: lmp lacks USER-SALTDEM" >&2; exit 1; }
 echo "build: $(pwd)/build/lmp"

@@ -6,7 +6,6 @@
 
 #include "comm.h"
 #include "error.h"
-#include "fix_dummy.h"
 #include "fix_saltdem_rebuild.h"
 #include "memory.h"
 #include "modify.h"
@@ -20,7 +19,7 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
-    Pair(lmp), name(style_name), hist_id(history_id), fix_dummy(nullptr), fix_history(nullptr), fix_rebuild(nullptr),
+    Pair(lmp), name(style_name), hist_id(history_id), fix_history(nullptr), fix_rebuild(nullptr),
     transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr),
     reach_abs(nullptr), dtfactor(0.2)
 {
@@ -32,9 +31,7 @@ PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *histor
   size_history = 0;
 
   // a placeholder keeps the history fix at this position in the fix list
-  if (history)
-    fix_dummy = dynamic_cast<FixDummy *>(modify->add_fix(
-        fmt::format("{}_DUMMY{} all DUMMY", hist_id, instance_me)));
+  if (history) modify->add_fix(fmt::format("{}_DUMMY{} all DUMMY", hist_id, instance_me));
 }
 
 PairSaltdem::~PairSaltdem()
@@ -116,7 +113,6 @@ void PairSaltdem::init_style()
     fix_history = dynamic_cast<FixNeighHistory *>(
         modify->replace_fix(fmt::format("{}_DUMMY{}", hist_id, instance_me), cmd, 0));
     fix_history->pair = this;
-    fix_dummy = nullptr;
   }
 
   if (fix_rebuild) fix_rebuild->range = 0.0;    // init_one() sets it again

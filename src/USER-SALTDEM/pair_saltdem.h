@@ -66,7 +66,6 @@ class PairSaltdem : public Pair {
   const char *name;            // style name for messages (force->pair_style may be hybrid)
   const char *hist_id;         // id stem of the FixNeighHistory (nullptr: law has no history)
   int history, size_history;   // values kept per touching pair
-  class FixDummy *fix_dummy;
   class FixNeighHistory *fix_history;
   class FixSaltdemRebuild *fix_rebuild;    // keeps pairs within the range listed
   double *transfer_factor;     // sign of each history value when (i,j) -> (j,i)

@@ -8,7 +8,7 @@ import pytest
 from lmprun import ROOT, lmp_path
 
 TINY = dict(preset="quick", width=1250, salt=250, cover=500, target=10, f="5 10",
-            nsettle=300, rate=1.0, root=str(ROOT))
+            nsettle=300, dstep=0.0025, root=str(ROOT))
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +33,7 @@ def read_dump(path):
 def test_scene_runs_to_target(tiny_run):
     wd, proc = tiny_run
     assert proc.returncode == 0, (proc.stdout + proc.stderr)[-3000:]
-    assert "expt1: done, fault displacement 10.0 m" in proc.stdout
+    assert "expt1: done, displacement 10.0 m" in proc.stdout
     dumps = sorted(wd.glob("dump.expt1.*.txt"), key=lambda p: int(p.name.split(".")[2]))
     assert len(dumps) == 3    # 0, 5 and 10 m
 

@@ -1,0 +1,161 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   Prescribed rigid motion of blocks of wall discs (basement blocks, end
+   walls), shared by fix saltdem/fault, saltdem/keystone and saltdem/tiltwall.
+   Every step the blocks are translated by rate*dt times their unit velocity
+   until the drive displacement reaches the target; the last step is
+   shortened so that it lands on the target exactly.  The discs carry the
+   block velocity, so viscous and frictional contacts see moving, no-slip
+   walls, and answer extract("prescribed") so that pair styles treat them as
+   walls of unbounded mass.  The displacement goes to restart files.
+------------------------------------------------------------------------- */
+
+#include "fix_saltdem_motion.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+#include "timer.h"
+#include "update.h"
+
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), disp(0.0)
+{
+  if (domain->dimension != 2) error->all(FLERR, "Fix {} requires dimension 2", style);
+  time_integrate = 1;
+  vector_flag = 1;
+  global_freq = 1;
+  extvector = 0;
+  restart_global = 1;
+}
+
+void FixSaltdemMotion::parse(int narg, char **arg)
+{
+  for (int iarg = 3; iarg < narg; iarg += 2) {
+    if (iarg + 2 > narg)
+      utils::missing_cmd_args(FLERR, fmt::format("fix {} {}", style, arg[iarg]), error);
+    const std::string kw = arg[iarg], val = arg[iarg + 1];
+    if (kw == "rate")
+      rate = utils::numeric(FLERR, val, false, lmp);
+    else if (kw == "target")
+      target = utils::numeric(FLERR, val, false, lmp);
+    else if (kw == "at_target") {
+      if (val == "stop") end_run = 0;
+      else if (val == "end") end_run = 1;
+      else error->all(FLERR, "Fix {}: at_target '{}' must be stop or end", style, val);
+    } else if (!parse_keyword(kw, val))
+      error->all(FLERR, "Fix {}: unknown keyword '{}'; usage: {}", style, kw, usage);
+  }
+  if (rate <= 0.0)
+    error->all(FLERR, "Fix {}: rate = {} must be > 0 (m/s); usage: {}", style, rate, usage);
+  if (target <= 0.0)
+    error->all(FLERR, "Fix {}: target = {} must be > 0 (m); usage: {}", style, target, usage);
+}
+
+double FixSaltdemMotion::angle_arg(const std::string &kw, const std::string &val)
+{
+  const double a = utils::numeric(FLERR, val, false, lmp);
+  if (a <= 0.0 || a >= 90.0)
+    error->all(FLERR, "Fix {}: {} = {} must be in (0, 90) degrees; usage: {}", style, kw, a, usage);
+  return a;
+}
+
+int FixSaltdemMotion::group_arg(const std::string &kw, const std::string &val)
+{
+  const int g = group->find(val);
+  if (g < 0) error->all(FLERR, "Fix {}: {} group '{}' does not exist", style, kw, val);
+  return g;
+}
+
+int FixSaltdemMotion::setmask()
+{
+  return INITIAL_INTEGRATE;
+}
+
+void FixSaltdemMotion::init()
+{
+  if (group->count(igroup) == 0)
+    error->all(FLERR, "Fix {} {}: group {} has no atoms", style, id, group->names[igroup]);
+  for (const auto &b : blocks)
+    if (b.igroup >= 0 && group->count(b.igroup) == 0)
+      error->all(FLERR, "Fix {} {}: block group {} has no atoms", style, id, group->names[b.igroup]);
+}
+
+void FixSaltdemMotion::set_velocity(double speed)
+{
+  double **v = atom->v, **omega = atom->omega;
+  int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    for (const auto &b : blocks)
+      if (b.igroup < 0 || (mask[i] & group->bitmask[b.igroup])) {
+        for (int k = 0; k < 3; k++) v[i][k] = speed * b.vel[k];
+        break;
+      }
+    if (omega) omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
+  }
+}
+
+void FixSaltdemMotion::setup(int)
+{
+  set_velocity(disp < target ? rate : 0.0);
+}
+
+void FixSaltdemMotion::initial_integrate(int)
+{
+  const double step = MIN(rate * update->dt, target - disp);
+  if (step <= 0.0) {
+    set_velocity(0.0);
+    if (end_run) timer->force_timeout();
+    return;
+  }
+  double **x = atom->x;
+  int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    for (const auto &b : blocks)
+      if (b.igroup < 0 || (mask[i] & group->bitmask[b.igroup])) {
+        for (int k = 0; k < 3; k++) x[i][k] += step * b.vel[k];
+        break;
+      }
+  }
+  disp += step;
+  set_velocity(disp < target ? rate : 0.0);
+  if (disp >= target) {
+    if (comm->me == 0)
+      utils::logmesg(lmp, "fix {} {}: target displacement {} m reached at step {}\n", style, id,
+                     target, update->ntimestep);
+    if (end_run) timer->force_timeout();
+  }
+}
+
+/* the motion is prescribed: pair styles treat the discs as walls */
+
+void *FixSaltdemMotion::extract(const char *str, int &dim)
+{
+  dim = 0;
+  if (strcmp(str, "prescribed") == 0) return (void *) &rate;
+  return nullptr;
+}
+
+void FixSaltdemMotion::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    int size = sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&disp, sizeof(double), 1, fp);
+  }
+}
+
+void FixSaltdemMotion::restart(char *buf)
+{
+  memcpy(&disp, buf, sizeof(double));
+}

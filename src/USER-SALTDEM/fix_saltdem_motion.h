@@ -1,0 +1,58 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   FixSaltdemMotion: the shared machinery of the prescribed-motion fixes
+   (saltdem/fault, saltdem/keystone, saltdem/tiltwall).  Not a style.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_FIX_SALTDEM_MOTION_H
+#define LMP_FIX_SALTDEM_MOTION_H
+
+#include "fix.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixSaltdemMotion : public Fix {
+ public:
+  FixSaltdemMotion(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void initial_integrate(int) override;
+  void *extract(const char *, int &) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+ protected:
+  // Rigid blocks of wall discs.  An atom of the fix group belongs to the first block
+  // whose group holds it; a block with group -1 takes the rest of the fix group.
+  // Each block moves with velocity rate * vel (vel in units of the drive rate).
+  struct Block {
+    int igroup;
+    double vel[3];
+  };
+  std::vector<Block> blocks;
+
+  double rate;      // drive rate (m/s): the displacement the fix reports grows at this rate
+  double target;    // drive displacement at which the blocks stop (m)
+  int end_run;      // 1: end the run when the target is reached
+  double disp;      // drive displacement so far (m), kept in restart files
+  std::string usage;
+
+  // parse the keywords shared by all motion fixes and call parse_keyword() for the
+  // others (it returns 1 if it took arg[iarg], arg[iarg+1]); then check rate and target
+  void parse(int narg, char **arg);
+  virtual int parse_keyword(const std::string &, const std::string &) { return 0; }
+  double angle_arg(const std::string &kw, const std::string &val);    // (0,90) degrees
+  int group_arg(const std::string &kw, const std::string &val);
+
+ private:
+  void set_velocity(double speed);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,78 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   fix saltdem/tiltwall: a model tilted by an angle A and extended by its
+   end wall.  The run is set in the tilted frame: the base is the x axis and
+   the end walls are normal to it, so gravity is rotated, g (sin A, -cos A)
+   for a model that dips toward +x.  The group (the end wall's discs) moves
+   outward along the base, +x (or -x with 'toward left'), at a given rate up
+   to a target.  With 'gravity GROUP' the fix applies the rotated gravity to
+   that group through an internal fix gravity, so the tilt is set in one place.
+------------------------------------------------------------------------- */
+
+#include "fix_saltdem_tiltwall.h"
+
+#include "error.h"
+#include "group.h"
+#include "modify.h"
+
+#include <cmath>
+
+using namespace LAMMPS_NS;
+
+FixSaltdemTiltwall::FixSaltdemTiltwall(LAMMPS *lmp, int narg, char **arg) :
+    FixSaltdemMotion(lmp, narg, arg), tilt(0.0), sense(1), g(9.81), igravity(-1)
+{
+  usage = "fix ID group saltdem/tiltwall tilt A rate V target T [toward right|left] "
+          "[gravity GROUP] [g G] [at_target stop|end]";
+  parse(narg, arg);
+  if (tilt == 0.0) error->all(FLERR, "Fix saltdem/tiltwall: tilt is required; usage: {}", usage);
+  if (g <= 0.0) error->all(FLERR, "Fix saltdem/tiltwall: g = {} must be > 0 (m/s^2)", g);
+  if (igravity == igroup)
+    error->all(FLERR, "Fix saltdem/tiltwall: the gravity group must be the discs that move "
+               "freely, not the wall group {}", group->names[igroup]);
+  blocks.push_back({-1, {double(sense), 0.0, 0.0}});
+  size_vector = 3;
+}
+
+FixSaltdemTiltwall::~FixSaltdemTiltwall()
+{
+  if (!gravity_id.empty() && modify->nfix && modify->get_fix_by_id(gravity_id))
+    modify->delete_fix(gravity_id);
+}
+
+int FixSaltdemTiltwall::parse_keyword(const std::string &kw, const std::string &val)
+{
+  if (kw == "tilt")
+    tilt = angle_arg(kw, val);
+  else if (kw == "toward") {
+    if (val == "right") sense = 1;
+    else if (val == "left") sense = -1;
+    else error->all(FLERR, "Fix saltdem/tiltwall: toward '{}' must be right or left", val);
+  } else if (kw == "gravity")
+    igravity = group_arg(kw, val);
+  else if (kw == "g")
+    g = utils::numeric(FLERR, val, false, lmp);
+  else
+    return 0;
+  return 1;
+}
+
+void FixSaltdemTiltwall::post_constructor()
+{
+  if (igravity < 0) return;
+  gravity_id = std::string(id) + "_GRAVITY";
+  const double a = tilt * M_PI / 180.0;
+  modify->add_fix(fmt::format("{} {} gravity {:.17g} vector {:.17g} {:.17g} 0", gravity_id,
+                              group->names[igravity], g, sense * sin(a), -cos(a)));
+}
+
+/* 1 wall displacement, 2-3 the gravity vector of the tilted frame (m/s^2) */
+
+double FixSaltdemTiltwall::compute_vector(int n)
+{
+  const double a = tilt * M_PI / 180.0;
+  if (n == 0) return disp;
+  if (n == 1) return sense * g * sin(a);
+  return -g * cos(a);
+}

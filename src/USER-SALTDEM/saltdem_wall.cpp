@@ -1,0 +1,101 @@
+/* ----------------------------------------------------------------------
+   SaltDEM: discrete-element salt tectonics for LAMMPS.
+
+   saltdem/wall: a straight line of touching wall discs, the building block
+   of basements, fault faces and end walls for the motion fixes
+   (saltdem/fault, saltdem/keystone, saltdem/tiltwall).  The discs are
+   centred on the segment from (x0,y0) to (x1,y1), both ends included, at
+   a spacing of at most 2R, so no disc of the scene can pass between them.
+------------------------------------------------------------------------- */
+
+#include "saltdem_wall.h"
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "group.h"
+
+#include <cmath>
+
+using namespace LAMMPS_NS;
+
+static const char *usage = "saltdem/wall TYPE x0 y0 x1 y1 R [group NAME] [density RHO]";
+
+void SaltdemWall::command(int narg, char **arg)
+{
+  if (domain->box_exist == 0)
+    error->all(FLERR, "saltdem/wall command before simulation box is defined");
+  if (domain->dimension != 2) error->all(FLERR, "saltdem/wall requires dimension 2");
+  if (!atom->radius_flag || !atom->rmass_flag)
+    error->all(FLERR, "saltdem/wall requires atom style sphere (per-atom radius and mass)");
+  if (narg < 6) utils::missing_cmd_args(FLERR, std::string("saltdem/wall; usage: ") + usage, error);
+
+  const int type = utils::inumeric(FLERR, arg[0], false, lmp);
+  if (type < 1 || type > atom->ntypes)
+    error->all(FLERR, "saltdem/wall: atom type {} is not in 1..{}", type, atom->ntypes);
+  const double x0 = utils::numeric(FLERR, arg[1], false, lmp);
+  const double y0 = utils::numeric(FLERR, arg[2], false, lmp);
+  const double x1 = utils::numeric(FLERR, arg[3], false, lmp);
+  const double y1 = utils::numeric(FLERR, arg[4], false, lmp);
+  const double r = utils::numeric(FLERR, arg[5], false, lmp);
+  if (r <= 0.0) error->all(FLERR, "saltdem/wall: radius R = {} must be > 0", r);
+
+  int igroup = -1;
+  double density = 2200.0;
+  for (int iarg = 6; iarg < narg; iarg += 2) {
+    if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, std::string("saltdem/wall ") + arg[iarg], error);
+    const std::string kw = arg[iarg];
+    if (kw == "group") {
+      igroup = group->find_or_create(arg[iarg + 1]);
+    } else if (kw == "density") {
+      density = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (density <= 0.0) error->all(FLERR, "saltdem/wall: density = {} must be > 0", density);
+    } else
+      error->all(FLERR, "saltdem/wall: unknown keyword '{}'; usage: {}", kw, usage);
+  }
+
+  // both ends must lie in the box (non-periodic boundaries would lose the discs)
+  const double *lo = domain->boxlo, *hi = domain->boxhi;
+  auto check = [&](double px, double py) {
+    if (px < lo[0] || px > hi[0] || py < lo[1] || py > hi[1])
+      error->all(FLERR, "saltdem/wall: end point ({}, {}) lies outside the box [{}, {}] x [{}, {}]; "
+                 "enlarge the box with change_box first", px, py, lo[0], hi[0], lo[1], hi[1]);
+  };
+  check(x0, y0);
+  check(x1, y1);
+  if (domain->triclinic) error->all(FLERR, "saltdem/wall does not support triclinic boxes");
+
+  const double len = sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0));
+  const int nseg = len > 0.0 ? (int) ceil(len / (2.0 * r) - 1e-9) : 0;
+  const int nlocal_previous = atom->nlocal;
+  const double *sublo = domain->sublo, *subhi = domain->subhi;
+  for (int k = 0; k <= nseg; k++) {
+    const double t = nseg ? double(k) / nseg : 0.0;
+    double x[3] = {x0 + t * (x1 - x0), y0 + t * (y1 - y0), 0.0};
+    // a point on the upper box edge belongs to the last sub-domain
+    bool mine = true;
+    for (int d = 0; d < 2; d++)
+      mine = mine && x[d] >= sublo[d] && (x[d] < subhi[d] || (subhi[d] == hi[d] && x[d] <= hi[d]));
+    if (!mine) continue;
+    atom->avec->create_atom(type, x);
+    const int i = atom->nlocal - 1;
+    atom->radius[i] = r;
+    atom->rmass[i] = density * M_PI * r * r;    // discs of unit thickness (set density/disc)
+    if (igroup >= 0) atom->mask[i] |= group->bitmask[igroup];
+  }
+
+  atom->data_fix_compute_variable(nlocal_previous, atom->nlocal);
+  bigint nblocal = atom->nlocal;
+  MPI_Allreduce(&nblocal, &atom->natoms, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (atom->tag_enable) atom->tag_extend();
+  atom->tag_check();
+  if (atom->map_style != Atom::MAP_NONE) {
+    atom->map_init();
+    atom->map_set();
+  }
+  if (comm->me == 0)
+    utils::logmesg(lmp, "saltdem/wall: {} wall discs of radius {} from ({}, {}) to ({}, {})\n",
+                   nseg + 1, r, x0, y0, x1, y1);
+}

@@ -1,0 +1,134 @@
+"""The paper's scenes (examples/expt1-3.in) at the tiny preset, and the scene assembly."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+from scipy.spatial import cKDTree
+
+from lmprun import ROOT, lmp_path
+
+
+def run_deck(deck, wd, timeout=900, **var):
+    cmd = [lmp_path(), "-in", str(ROOT / "examples" / deck), "-log", "log.lammps", "-echo", "none",
+           "-var", "root", str(ROOT)]
+    for k, v in var.items():
+        cmd += ["-var", k, *str(v).split()]
+    proc = subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=timeout,
+                          env=dict(os.environ, OMP_NUM_THREADS="1"))
+    assert proc.returncode == 0, (proc.stdout + proc.stderr)[-3000:]
+    return proc
+
+
+def dumps(wd, name):
+    files = sorted(wd.glob(f"dump.{name}.*.txt"), key=lambda p: int(p.name.split(".")[2]))
+    return [read_dump(f) for f in files]
+
+
+def read_dump(path):
+    lines = path.read_text().splitlines()
+    cols = lines[8].split()[2:]
+    data = np.array([[float(v) for v in l.split()] for l in lines[9:]])
+    d = {c: data[:, k] for k, c in enumerate(cols)}
+    order = np.argsort(d["id"])
+    return {c: v[order] for c, v in d.items()}
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    out = {}
+    for name in ("expt1", "expt2", "expt3"):
+        wd = tmp_path_factory.mktemp(name)
+        out[name] = (wd, run_deck(f"{name}.in", wd, preset="tiny"))
+    return out
+
+
+@pytest.mark.parametrize("name", ["expt1", "expt2", "expt3"])
+def test_deck_runs_to_target(tiny, name):
+    wd, proc = tiny[name]
+    assert f"{name}: done, displacement 2.0 m" in proc.stdout
+    frames = dumps(wd, name)
+    assert len(frames) == 3    # 0, 1 and 2 m
+    first = frames[0]
+    assert (first["type"] == 1).sum() > 50 and (first["type"] == 2).sum() > 20
+    assert np.all(first["i_marker"][first["type"] == 3] == -1)
+    # progress: displacement, percent, natural time and Reynolds number in the thermo output
+    assert "v_pct" in proc.stdout and "v_tnat" in proc.stdout and "f_scale[1]" in proc.stdout
+    assert list(wd.glob(f"{name}.restart.*")), "no restart files"
+
+
+def wall_motion(frames, select):
+    """Displacements (first to last frame) of the wall discs chosen by select(x, y)."""
+    a, b = frames[0], frames[-1]
+    assert np.array_equal(a["id"], b["id"])
+    m = (a["type"] == 3) & select(a["x"], a["y"])
+    return np.c_[b["x"][m] - a["x"][m], b["y"][m] - a["y"][m]]
+
+
+def test_expt2_keystone_blocks(tiny):
+    wd, _ = tiny["expt2"]
+    frames = dumps(wd, "expt2")
+    c, s = np.cos(np.radians(60)), np.sin(np.radians(60))
+    left = wall_motion(frames, lambda x, y: x < 4000)
+    key = wall_motion(frames, lambda x, y: (x > 5300) & (x < 7200) & (y > -150))
+    right = wall_motion(frames, lambda x, y: x > 9000)
+    assert len(left) > 5 and len(key) > 5 and len(right) > 5
+    np.testing.assert_allclose(left, 0.0, atol=1e-6)
+    np.testing.assert_allclose(key, np.tile([2 * c, -2 * s], (len(key), 1)), rtol=1e-5, atol=1e-5)
+    np.testing.assert_allclose(right, np.tile([4 * c, 0.0], (len(right), 1)), rtol=1e-5, atol=1e-5)
+    # symmetric graben: the keystone moves by the same amount relative to either side
+    rel_left, rel_right = key[0] - left[0], key[0] - right[0]
+    assert abs(np.hypot(*rel_left) - np.hypot(*rel_right)) < 1e-5
+
+
+def test_expt3_end_wall_and_tilted_gravity(tiny):
+    wd, proc = tiny["expt3"]
+    frames = dumps(wd, "expt3")
+    end = wall_motion(frames, lambda x, y: (x > 6300) & (y > 0))
+    base = wall_motion(frames, lambda x, y: (x < 6300) | (y < 0))
+    np.testing.assert_allclose(end, np.tile([2.0, 0.0], (len(end), 1)), atol=1e-5)
+    np.testing.assert_allclose(base, 0.0, atol=1e-6)
+    # the tilted gravity pulls the pack down the base (+x): mean vx of the pack > 0
+    last = frames[-1]
+    assert last["vx"][last["type"] != 3].mean() > 0.0
+
+
+@pytest.fixture(scope="module")
+def assembly(tmp_path_factory):
+    """A small scene assembly at the quick preset's radii: 2.5 km x (400 m salt + 700 m cover)."""
+    wd = tmp_path_factory.mktemp("assembly")
+    geo = dict(width=2500, salt=400, cover=700, marker=100)
+    proc = run_deck("expt1.in", wd, preset="tiny", rmin=25, rmax=62.5, dist="paper", nsettle=2000,
+                    target=1, f=1, dt=0.0025, dstep=0.0025, S=4, **geo)
+    return wd, proc, geo
+
+
+def test_assembly_layers_and_markers(assembly):
+    wd, proc, g = assembly
+    first = dumps(wd, "expt1")[0]
+    x, y, r, t, mk = first["x"], first["y"], first["radius"], first["type"], first["i_marker"]
+    salt, cover = t == 2, t == 1
+    dmean = 2 * r[salt | cover].mean()
+    # the paper's radius law: mean 0.4439 (rmin + rmax), 9.71 m for 6.25-15.625 m
+    assert abs(r[salt | cover].mean() / (0.44389 * 87.5) - 1) < 0.05
+    # layer thicknesses within one mean disc diameter
+    assert abs((y[salt] + r[salt]).max() - g["salt"]) < dmean
+    assert abs((y[cover] + r[cover]).max() - (g["salt"] + g["cover"])) < dmean
+    assert abs((y[salt] - r[salt]).min()) < dmean
+    # markers: 100 m salt bands across the width, 100 m cover layers over its thickness
+    assert np.unique(mk[salt]).size == pytest.approx(g["width"] / g["marker"], abs=1)
+    assert np.unique(mk[cover]).size == pytest.approx(g["cover"] / g["marker"], abs=1)
+    # settled: the worst overlap of the cover's contacts (cover-cover, cover-salt) below 2 % of
+    # the smallest radius.  Salt-salt pairs are SPH particles without a hard core (kn_salt 0):
+    # the salt's pressure keeps them apart on average, overlaps are not contacts there
+    p, rr, tt = np.c_[x, y][salt | cover], r[salt | cover], t[salt | cover]
+    pairs = cKDTree(p).query_pairs(2 * rr.max(), output_type="ndarray")
+    i, j = pairs[:, 0], pairs[:, 1]
+    gap = np.hypot(*(p[i] - p[j]).T) - rr[i] - rr[j]
+    withcover = (tt[i] == 1) | (tt[j] == 1)
+    assert -gap[withcover].min() < 0.02 * 25
+    assert -gap[~withcover].min() < 0.5 * 25    # salt: no disc sits on top of another
+    line = [l for l in proc.stdout.splitlines() if l.startswith("pack:")][0]
+    phi = float(line.split("packing fraction")[1].split(",")[0])
+    z = float(line.split("coordination number")[1])
+    assert 0.80 < phi < 0.90 and 3.0 < z < 4.5

@@ -132,3 +132,15 @@ def test_assembly_layers_and_markers(assembly):
     phi = float(line.split("packing fraction")[1].split(",")[0])
     z = float(line.split("coordination number")[1])
     assert 0.80 < phi < 0.90 and 3.0 < z < 4.5
+
+
+def test_series_runner_fig7(tmp_path):
+    """examples/run-series.sh fig7 tiny: three salt thicknesses, three figures."""
+    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path())
+    r = subprocess.run(["bash", str(ROOT / "examples" / "run-series.sh"), "fig7", "tiny"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=600, env=env)
+    assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
+    for salt in (1000, 500, 250):
+        d = ROOT / "out" / "fig7_tiny" / f"fig7_salt{salt}"
+        assert f"salt {salt} m" in (d / "stdout.txt").read_text()
+        assert (d / "figures" / f"fig7_salt{salt}.png").stat().st_size > 10000

@@ -134,6 +134,10 @@ void PairSaltdem::init_style()
                "Pair style {}: timestep {:.6g} exceeds the stable limit {:.6g} set by {}. "
                "Use 'timestep {:.3g}' or smaller, or change the parameter named",
                name, update->dt, dtmax, why, 0.99 * dtmax);
+  // the stability margin belongs in every run's log
+  if (dtmax > 0.0 && comm->me == 0)
+    utils::logmesg(lmp, "Pair style {}: timestep {:.6g} = {:.3g} of the stable limit {:.6g} ({})\n",
+                   name, update->dt, update->dt / dtmax, dtmax, why);
 }
 
 /* smallest mass per type that the integrator sees: rmass times the inertia

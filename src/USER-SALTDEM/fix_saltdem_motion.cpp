@@ -27,7 +27,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), disp(0.0)
+    Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), ended(0), disp(0.0)
 {
   if (domain->dimension != 2) error->all(FLERR, "Fix {} requires dimension 2", style);
   time_integrate = 1;
@@ -114,7 +114,7 @@ void FixSaltdemMotion::initial_integrate(int)
   const double step = MIN(rate * update->dt, target - disp);
   if (step <= 0.0) {
     set_velocity(0.0);
-    if (end_run) timer->force_timeout();
+    if (end_run) end_this_run();
     return;
   }
   double **x = atom->x;
@@ -133,8 +133,23 @@ void FixSaltdemMotion::initial_integrate(int)
     if (comm->me == 0)
       utils::logmesg(lmp, "fix {} {}: target displacement {} m reached at step {}\n", style, id,
                      target, update->ntimestep);
-    if (end_run) timer->force_timeout();
+    if (end_run) end_this_run();
   }
+}
+
+/* 'at_target end' stops the run through the timer, as a time limit would; the timeout is
+   cleared after the run so that later run commands of the deck still run (as fix halt does) */
+
+void FixSaltdemMotion::end_this_run()
+{
+  ended = 1;
+  timer->force_timeout();
+}
+
+void FixSaltdemMotion::post_run()
+{
+  if (ended) timer->reset_timeout();
+  ended = 0;
 }
 
 /* the motion is prescribed: pair styles treat the discs as walls */

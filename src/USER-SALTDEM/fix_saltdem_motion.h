@@ -22,6 +22,7 @@ class FixSaltdemMotion : public Fix {
   void init() override;
   void setup(int) override;
   void initial_integrate(int) override;
+  void post_run() override;
   void *extract(const char *, int &) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
@@ -39,6 +40,7 @@ class FixSaltdemMotion : public Fix {
   double rate;      // drive rate (m/s): the displacement the fix reports grows at this rate
   double target;    // drive displacement at which the blocks stop (m)
   int end_run;      // 1: end the run when the target is reached
+  int ended;        // 1: this fix ended the current run (post_run lets the next one go)
   double disp;      // drive displacement so far (m), kept in restart files
   std::string usage;
 
@@ -51,6 +53,7 @@ class FixSaltdemMotion : public Fix {
 
  private:
   void set_velocity(double speed);
+  void end_this_run();
 };
 
 }    // namespace LAMMPS_NS

@@ -56,11 +56,12 @@ void SaltdemWall::command(int narg, char **arg)
       error->all(FLERR, "saltdem/wall: unknown keyword '{}'; usage: {}", kw, usage);
   }
 
-  // both ends must lie in the box (non-periodic boundaries would lose the discs)
+  // both ends must lie in the box, which LAMMPS owns half-open, [lo, hi): a disc on an upper
+  // edge of a non-periodic box is lost at the next run
   const double *lo = domain->boxlo, *hi = domain->boxhi;
   auto check = [&](double px, double py) {
-    if (px < lo[0] || px > hi[0] || py < lo[1] || py > hi[1])
-      error->all(FLERR, "saltdem/wall: end point ({}, {}) lies outside the box [{}, {}] x [{}, {}]; "
+    if (px < lo[0] || px >= hi[0] || py < lo[1] || py >= hi[1])
+      error->all(FLERR, "saltdem/wall: end point ({}, {}) lies outside the box [{}, {}) x [{}, {}); "
                  "enlarge the box with change_box first", px, py, lo[0], hi[0], lo[1], hi[1]);
   };
   check(x0, y0);
@@ -69,15 +70,18 @@ void SaltdemWall::command(int narg, char **arg)
 
   const double len = sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0));
   const int nseg = len > 0.0 ? (int) ceil(len / (2.0 * r) - 1e-9) : 0;
+  // new atoms overwrite ghost atoms: clear them and the map first (as create_atoms does)
+  if (atom->map_style != Atom::MAP_NONE) atom->map_clear();
+  atom->nghost = 0;
+  atom->avec->clear_bonus();
+
   const int nlocal_previous = atom->nlocal;
   const double *sublo = domain->sublo, *subhi = domain->subhi;
   for (int k = 0; k <= nseg; k++) {
     const double t = nseg ? double(k) / nseg : 0.0;
     double x[3] = {x0 + t * (x1 - x0), y0 + t * (y1 - y0), 0.0};
-    // a point on the upper box edge belongs to the last sub-domain
     bool mine = true;
-    for (int d = 0; d < 2; d++)
-      mine = mine && x[d] >= sublo[d] && (x[d] < subhi[d] || (subhi[d] == hi[d] && x[d] <= hi[d]));
+    for (int d = 0; d < 2; d++) mine = mine && x[d] >= sublo[d] && x[d] < subhi[d];
     if (!mine) continue;
     atom->avec->create_atom(type, x);
     const int i = atom->nlocal - 1;

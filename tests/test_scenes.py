@@ -144,3 +144,31 @@ def test_series_runner_fig7(tmp_path):
         d = ROOT / "out" / "fig7_tiny" / f"fig7_salt{salt}"
         assert f"salt {salt} m" in (d / "stdout.txt").read_text()
         assert (d / "figures" / f"fig7_salt{salt}.png").stat().st_size > 10000
+
+
+@pytest.mark.parametrize("name", ["expt1", "expt2"])
+def test_resume_from_restart_file(tmp_path, name):
+    """A run stopped after its first frame and resumed from its restart file (-var restart) ends
+    in the same state as the uninterrupted run: shear history, the salt's continuity and
+    reference densities, and the motion fix's displacement all come back."""
+    full, part = tmp_path / "full", tmp_path / "part"
+    full.mkdir(), part.mkdir()
+    run_deck(f"{name}.in", full, preset="tiny")
+    for p in full.glob("pack_*.data"):
+        (part / p.name).write_bytes(p.read_bytes())
+    run_deck(f"{name}.in", part, preset="tiny", f=1)
+    newest = max(part.glob(f"{name}.restart.*"), key=lambda p: p.stat().st_mtime)
+    proc = run_deck(f"{name}.in", part, preset="tiny", restart=newest.name)
+    assert "resumed from" in proc.stdout and f"{name}: done, displacement 2.0 m" in proc.stdout
+    a, b = dumps(full, name)[-1], dumps(part, name)[-1]
+    for c in ("x", "y", "vx", "vy"):
+        np.testing.assert_allclose(b[c], a[c], rtol=1e-10, atol=1e-10 * np.abs(a[c]).max())
+
+
+def test_missing_restart_file_stops(tmp_path):
+    r = subprocess.run([lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-var", "root",
+                        str(ROOT), "-var", "preset", "tiny", "-var", "restart", "expt1_restart_x",
+                        "-log", "none", "-echo", "none"], cwd=tmp_path, capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode != 0 and "restart file expt1_restart_x not found" in r.stdout
+    assert not list(tmp_path.glob("dump.*"))

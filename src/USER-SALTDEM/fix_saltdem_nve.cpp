@@ -18,6 +18,8 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
+#include "output.h"
+#include "thermo.h"
 #include "update.h"
 
 #include <cmath>
@@ -58,7 +60,30 @@ void FixSaltdemNVE::init()
   reset_dt();
   inertia_factor = (domain->dimension == 2) ? 0.5 : 0.4;
   if (group->count(igroup) == 0)
-    error->warning(FLERR, "Fix saltdem/nve {}: group {} has no atoms", id, group->names[igroup]);
+    error->all(FLERR,
+               "Fix saltdem/nve {}: group {} has no atoms, nothing would be integrated; check "
+               "the group definition (or unfix {})", id, group->names[igroup], id);
+
+  // a disc without radius or mass has no finite inertia: name it now, not as a NaN later
+  bigint nbad = 0;
+  tagint first = MAXTAGINT;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((atom->mask[i] & groupbit) &&
+        !(atom->radius[i] > 0.0 && atom->rmass[i] > 0.0 && std::isfinite(atom->radius[i]) &&
+          std::isfinite(atom->rmass[i]))) {
+      nbad++;
+      first = MIN(first, atom->tag[i]);
+    }
+  bigint nbadall;
+  tagint firstall;
+  MPI_Allreduce(&nbad, &nbadall, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  MPI_Allreduce(&first, &firstall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  if (nbadall)
+    error->all(FLERR,
+               "Fix saltdem/nve {}: {} atom(s) of group {} have a radius or mass that is not "
+               "> 0 (the first is atom {}); give every integrated disc a diameter and a mass "
+               "('set ... diameter', 'set ... density/disc') before the run",
+               id, nbadall, group->names[igroup], firstall);
 }
 
 void FixSaltdemNVE::reset_dt()
@@ -110,7 +135,8 @@ void FixSaltdemNVE::final_integrate()
   if (check_every && update->ntimestep % check_every == 0) check_finite();
 }
 
-/* a NaN or Inf never passes silently: name the atom, its type and the step */
+/* a NaN or Inf never passes silently: name the atom, its type and the step; nor does the
+   loss of atoms through a non-periodic boundary */
 
 void FixSaltdemNVE::check_finite()
 {
@@ -124,6 +150,29 @@ void FixSaltdemNVE::check_finite()
                  "step {}: the run is numerically unstable. Reduce the timestep (pair styles "
                  "saltdem/* report their stable limit) or raise the inertia of viscous discs",
                  atom->tag[i], atom->type[i], update->ntimestep);
+  }
+
+  // LAMMPS deletes an atom that leaves through a non-periodic boundary and by default reports
+  // it only at the next thermo output, possibly many steps (and dump frames) later
+  if (output->thermo && output->thermo->lostflag == Thermo::ERROR) {
+    bigint n = atom->nlocal, ntotal;
+    MPI_Allreduce(&n, &ntotal, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+    // LAMMPS also drops an atom that jumps past the neighbouring sub-domains in one step
+    if (ntotal != atom->natoms && domain->nonperiodic == 0)
+      error->all(FLERR,
+                 "Fix saltdem/nve: {} atom(s) lost by step {} (original {}, current {}) in a "
+                 "periodic box: they jumped farther than a sub-domain in one step, a numerical "
+                 "blow-up. Reduce the timestep (pair styles saltdem/* report their stable "
+                 "limit) or find the force that is not checked (e.g. another fix)",
+                 atom->natoms - ntotal, update->ntimestep, atom->natoms, ntotal);
+    if (ntotal != atom->natoms)
+      error->all(FLERR,
+                 "Fix saltdem/nve: {} atom(s) lost by step {} (original {}, current {}): discs "
+                 "left the box through a non-periodic boundary (or, after a numerical blow-up, "
+                 "jumped past a sub-domain). Enclose the scene with wall discs, enlarge the box, "
+                 "make that boundary shrink-wrapped ('boundary ... m'), or accept losses with "
+                 "'thermo_modify lost ignore'",
+                 atom->natoms - ntotal, update->ntimestep, atom->natoms, ntotal);
   }
 }
 

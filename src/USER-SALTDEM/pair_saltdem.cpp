@@ -21,7 +21,7 @@ using namespace LAMMPS_NS;
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
     Pair(lmp), name(style_name), hist_id(history_id), fix_history(nullptr), fix_rebuild(nullptr),
     transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr),
-    reach_abs(nullptr), dtfactor(0.2)
+    reach_abs(nullptr), dtfactor(0.2), tbounds_built(-1), tbounds_inum(-1)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;
@@ -40,7 +40,7 @@ PairSaltdem::~PairSaltdem()
   if (fix_rebuild) modify->delete_fix(fix_rebuild->id);
   if (history) {
     if (fix_history)
-      modify->delete_fix(fmt::format("{}{}", hist_id, instance_me));
+      modify->delete_fix(std::string(fix_history->id));
     else
       modify->delete_fix(fmt::format("{}_DUMMY{}", hist_id, instance_me));
   }
@@ -108,8 +108,20 @@ void PairSaltdem::init_style()
 
   // no suffix: NEIGH_HISTORY/omp of LAMMPS 4Feb2025 drops the history of
   // ghost partners and the non-default transfer signs
+  // restart files find the history by fix ID: under pair hybrid the ID counts the sub-styles
+  // of this name, not the pair instances (also after 'pair_style hybrid' is given again, which
+  // makes new sub-styles); it holds the number of values, so that a restart with another
+  // number (rolling switched) drops the history instead of misreading it
   if (history && !fix_history) {
-    auto cmd = fmt::format("{}{} all NEIGH_HISTORY {}", hist_id, instance_me, size_history);
+    std::string fid = fmt::format("{}{}", hist_id, instance_me);
+    if (force->pair != this)
+      for (int n = 1; n <= 64; n++)
+        if (force->pair_match(name, 0, n) == this) {
+          fid = fmt::format("{}_SUB{}", hist_id, n);
+          break;
+        }
+    fid += fmt::format("_N{}", size_history);
+    auto cmd = fmt::format("{} all NEIGH_HISTORY {}", fid, size_history);
     fix_history = dynamic_cast<FixNeighHistory *>(
         modify->replace_fix(fmt::format("{}_DUMMY{}", hist_id, instance_me), cmd, 0));
     fix_history->pair = this;
@@ -242,4 +254,30 @@ double PairSaltdem::memory_usage()
 {
   const int n = atom->ntypes + 1;
   return (double) n * n * (2 * sizeof(double) + sizeof(int) + params_size());
+}
+
+/* slices of the neighbour list with about equal work (pairs + 1 per atom)
+   per thread, for the OpenMP variants */
+
+const int *PairSaltdem::thread_bounds(int nthreads)
+{
+  const int inum = list->inum;
+  if ((int) tbounds.size() != nthreads + 1 || tbounds_built != neighbor->lastcall ||
+      tbounds_inum != inum) {
+    tbounds.assign(nthreads + 1, inum);
+    tbounds[0] = 0;
+    const int *ilist = list->ilist;
+    const int *numneigh = list->numneigh;
+    bigint total = 0;
+    for (int ii = 0; ii < inum; ii++) total += numneigh[ilist[ii]] + 1;
+    bigint sum = 0;
+    int t = 1;
+    for (int ii = 0; ii < inum && t < nthreads; ii++) {
+      sum += numneigh[ilist[ii]] + 1;
+      while (t < nthreads && sum * nthreads >= total * t) tbounds[t++] = ii + 1;
+    }
+    tbounds_built = neighbor->lastcall;
+    tbounds_inum = inum;
+  }
+  return tbounds.data();
 }

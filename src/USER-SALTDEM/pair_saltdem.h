@@ -17,6 +17,7 @@
 #include "saltdem_contact.h"
 
 #include "atom.h"
+#include "domain.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "neigh_list.h"
@@ -24,6 +25,7 @@
 #include "update.h"
 
 #include <cmath>
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -40,12 +42,50 @@ class PairSaltdem : public Pair {
   double memory_usage() override;
   virtual void pre_loop() {}    // per-step work before the pair loop (all threads joined)
 
+  // what a law returns: the discs touch (history kept), the law made torques
+  enum { LAW_TOUCH = 1, LAW_TORQUE = 2 };
+
+  // the per-atom arrays a law reads, fetched once per pair loop (LAMMPS
+  // allocates per-atom 2D arrays contiguously: rows of 3)
+  struct Atoms {
+    const double (*x)[3], (*v)[3], (*omega)[3];
+    const double *radius, *rmass;
+  };
+
   // the pair loop over [ifrom, ito) of the neighbour list, written once for
-  // the serial and the threaded styles: law() is the derived style's inline
-  // force law (it fills force and torques, returns true while touching),
-  // tally() receives (i, j, evdwl, fx, fy, fz, delx, dely, delz)
-  template <class Derived, int EVFLAG, class Tally>
+  // the serial and the threaded styles.  The derived style's inline law
+  //   template <int DIM, int EVFLAG> int law(const Atoms &, int i, int j, int itype,
+  //     int jtype, double r, double *hist, bool advance, double *f, double *ti,
+  //     double *tj, double &evdwl)
+  // computes the kinematics it needs, fills the force on i (and torques on i
+  // and j if it returns LAW_TORQUE) and returns LAW_* flags; tally() receives
+  // (i, j, evdwl, fx, fy, fz, delx, dely, delz).  DIM 2: discs in the xy
+  // plane (z parts are zero and are not touched, see saltdem_contact.h).
+  template <class Derived, int EVFLAG, int DIM, class Tally>
   void loop(Derived *self, int ifrom, int ito, double **f, double **torque, Tally &&tally);
+
+  // loop() for the run's energy/virial flag and dimension
+  template <class Derived, class Tally>
+  void dispatch_loop(Derived *self, int ifrom, int ito, double **f, double **torque,
+                     Tally &&tally)
+  {
+    if (domain->dimension == 2) {
+      if (evflag)
+        loop<Derived, 1, 2>(self, ifrom, ito, f, torque, tally);
+      else
+        loop<Derived, 0, 2>(self, ifrom, ito, f, torque, tally);
+    } else {
+      if (evflag)
+        loop<Derived, 1, 3>(self, ifrom, ito, f, torque, tally);
+      else
+        loop<Derived, 0, 3>(self, ifrom, ito, f, torque, tally);
+    }
+  }
+
+  // the slice [b[t], b[t+1]) of the neighbour list for thread t of n: about the same
+  // number of pairs each (the atoms of a style's list are often bunched in one part of
+  // it, e.g. the salt of a scene), re-split after each neighbour list build
+  const int *thread_bounds(int nthreads);
 
   // the serial compute() of a derived style: pre_loop(), then the loop over all pairs
   template <class Derived> void compute_serial(Derived *self, int eflag, int vflag)
@@ -56,10 +96,7 @@ class PairSaltdem : public Pair {
                         double dy, double dz) {
       ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
     };
-    if (evflag)
-      loop<Derived, 1>(self, 0, list->inum, atom->f, atom->torque, tally);
-    else
-      loop<Derived, 0>(self, 0, list->inum, atom->f, atom->torque, tally);
+    dispatch_loop(self, 0, list->inum, atom->f, atom->torque, tally);
   }
 
  protected:
@@ -73,6 +110,9 @@ class PairSaltdem : public Pair {
   double **extra;              // interaction range beyond contact per type pair
   double **reach_abs;          // interaction range between centres, whatever the radii
   double dtfactor;             // stable dt = dtfactor * sqrt(m/k) (elastic)
+  std::vector<int> tbounds;    // thread_bounds(): the slices, and the list they were made for
+  bigint tbounds_built;
+  int tbounds_inum;
 
   virtual void allocate();
   virtual void allocate_params(int n) = 0;
@@ -90,35 +130,37 @@ class PairSaltdem : public Pair {
                    int &jlo, int &jhi);
 };
 
-template <class Derived, int EVFLAG, class Tally>
+template <class Derived, int EVFLAG, int DIM, class Tally>
 void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **torque,
                        Tally &&tally)
 {
-  double **x = atom->x;
-  double **v = atom->v;
-  double **omega = atom->omega;
-  double *radius = atom->radius;
-  double *rmass = atom->rmass;
-  int *type = atom->type;
+  using row = const double (*)[3];
+  const Atoms a = {atom->x ? (row) atom->x[0] : nullptr, atom->v ? (row) atom->v[0] : nullptr,
+                   atom->omega ? (row) atom->omega[0] : nullptr, atom->radius, atom->rmass};
+  const auto x = a.x;
+  const double *radius = atom->radius;
+  const int *type = atom->type;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
   const bool advance = (update->setupflag == 0);    // history is not advanced in setup
   const int nhist = size_history;
 
-  int *ilist = list->ilist;
-  int *numneigh = list->numneigh;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
   int **firsttouch = nhist ? fix_history->firstflag : nullptr;
   double **firsthist = nhist ? fix_history->firstvalue : nullptr;
 
-  SaltDEM::Contact c;
   double fij[3], ti[3], tj[3];
 
   for (int ii = ifrom; ii < ito; ii++) {
     const int i = ilist[ii];
     const int itype = type[i];
     const double radi = radius[i];
-    int *jlist = firstneigh[i];
+    const double xi0 = x[i][0], xi1 = x[i][1], xi2 = (DIM == 3) ? x[i][2] : 0.0;
+    const double *extra_i = extra[itype];
+    const double *reach_i = reach_abs[itype];
+    const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
     int *touch = nhist ? firsttouch[i] : nullptr;
     double *allhist = nhist ? firsthist[i] : nullptr;
@@ -126,45 +168,58 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const int jtype = type[j];
-      const double delx = x[i][0] - x[j][0];
-      const double dely = x[i][1] - x[j][1];
-      const double delz = x[i][2] - x[j][2];
-      const double rsq = delx * delx + dely * dely + delz * delz;
-      const double reach = MAX(radi + radius[j] + extra[itype][jtype], reach_abs[itype][jtype]);
+      const double delx = xi0 - x[j][0];
+      const double dely = xi1 - x[j][1];
+      const double delz = (DIM == 3) ? xi2 - x[j][2] : 0.0;
+      const double rsq = (DIM == 3) ? delx * delx + dely * dely + delz * delz
+                                    : delx * delx + dely * dely;
+      const double reach = MAX(radi + radius[j] + extra_i[jtype], reach_i[jtype]);
       double *hist = nhist ? &allhist[nhist * jj] : nullptr;
 
+      // out of reach: a pair that is not flagged touching has a zero history
+      // already (FixNeighHistory zeroes new pairs, this loop ended ones)
       if (rsq >= reach * reach || rsq == 0.0) {
-        if (nhist) {
+        if (nhist && touch[jj]) {
           touch[jj] = 0;
           for (int k = 0; k < nhist; k++) hist[k] = 0.0;
         }
         continue;
       }
-      SaltDEM::contact_kinematics(x[i], x[j], v[i], v[j], omega[i], omega[j], radi, radius[j],
-                                  rmass[i], rmass[j], std::sqrt(rsq), c);
       double evdwl = 0.0;
-      const bool touching = self->law(i, j, itype, jtype, c, hist, advance, fij, ti, tj, evdwl);
+      const int flags = self->template law<DIM, EVFLAG>(a, i, j, itype, jtype, std::sqrt(rsq),
+                                                        hist, advance, fij, ti, tj, evdwl);
       if (nhist) {
-        touch[jj] = touching ? 1 : 0;
-        if (!touching)
+        if (flags & LAW_TOUCH)
+          touch[jj] = 1;
+        else if (touch[jj]) {
+          touch[jj] = 0;
           for (int k = 0; k < nhist; k++) hist[k] = 0.0;
+        }
       }
 
       f[i][0] += fij[0];
       f[i][1] += fij[1];
-      f[i][2] += fij[2];
-      torque[i][0] += ti[0];
-      torque[i][1] += ti[1];
-      torque[i][2] += ti[2];
+      if (DIM == 3) f[i][2] += fij[2];
+      if (flags & LAW_TORQUE) {
+        if (DIM == 3) {
+          torque[i][0] += ti[0];
+          torque[i][1] += ti[1];
+        }
+        torque[i][2] += ti[2];
+      }
       if (newton_pair || j < nlocal) {
         f[j][0] -= fij[0];
         f[j][1] -= fij[1];
-        f[j][2] -= fij[2];
-        torque[j][0] += tj[0];
-        torque[j][1] += tj[1];
-        torque[j][2] += tj[2];
+        if (DIM == 3) f[j][2] -= fij[2];
+        if (flags & LAW_TORQUE) {
+          if (DIM == 3) {
+            torque[j][0] += tj[0];
+            torque[j][1] += tj[1];
+          }
+          torque[j][2] += tj[2];
+        }
       }
-      if (EVFLAG) tally(i, j, evdwl, fij[0], fij[1], fij[2], delx, dely, delz);
+      if (EVFLAG) tally(i, j, evdwl, fij[0], fij[1], (DIM == 3) ? fij[2] : 0.0, delx, dely, delz);
     }
   }
 }

@@ -27,12 +27,19 @@ class PairSaltdemCohesive : public PairSaltdem {
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
 
-  // the force law, inlined into the shared pair loop
-  bool law(int, int, int itype, int jtype, const SaltDEM::Contact &c, double *hist, bool advance,
-           double *f, double *ti, double *tj, double &evdwl) const
+  // the force law, inlined into the shared pair loop (PairSaltdem::loop)
+  template <int DIM, int EVFLAG>
+  int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *hist,
+          bool advance, double *f, double *ti, double *tj, double &evdwl) const
   {
-    return SaltDEM::cohesive_force(params[itype][jtype], c, hist, rolling, dt, advance, f, ti, tj,
-                                   evdwl);
+    SaltDEM::Contact c;
+    SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],
+                                     a.radius[i], a.radius[j], a.rmass[i], a.rmass[j], r, c,
+                                     rolling);
+    return SaltDEM::cohesive_force<DIM, EVFLAG>(params[itype][jtype], c, hist, rolling, dt,
+                                                advance, f, ti, tj, evdwl)
+        ? (LAW_TOUCH | LAW_TORQUE)
+        : 0;
   }
 
  protected:

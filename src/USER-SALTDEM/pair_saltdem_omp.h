@@ -4,8 +4,10 @@
    The OpenMP variants of the SaltDEM pair styles (-sf omp).  One template
    serves every style: each thread runs the style's own pair loop
    (PairSaltdem::loop, the same code as the serial style) over its slice of
-   the neighbour list into thread-private force/torque arrays, which ThrOMP
-   then reduces.  Needs the OPENMP package.
+   the neighbour list (PairSaltdem::thread_bounds: equal numbers of pairs)
+   into thread-private force/torque arrays, which ThrOMP then reduces; the
+   continuity pass of saltdem/viscous runs threaded as well.  Needs the
+   OPENMP package.
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -29,6 +31,9 @@ PairStyle(saltdem/viscous/omp,PairSaltdemViscousOMP);
 #include "timer.h"
 
 #include "omp_compat.h"
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace LAMMPS_NS {
 
@@ -46,14 +51,18 @@ template <class Style> class PairSaltdemOMP : public Style, public ThrOMP {
     this->pre_loop();
     const int nall = this->atom->nlocal + this->atom->nghost;
     const int nthreads = this->comm->nthreads;
-    const int inum = this->list->inum;
+    const int *bounds = this->thread_bounds(nthreads);
 
 #if defined(_OPENMP)
-#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag)
+#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag, bounds)
 #endif
     {
-      int ifrom, ito, tid;
-      loop_setup_thr(ifrom, ito, tid, inum, nthreads);
+#if defined(_OPENMP)
+      const int tid = omp_get_thread_num();
+#else
+      const int tid = 0;
+#endif
+      const int ifrom = bounds[tid], ito = bounds[tid + 1];
       ThrData *thr = fix->get_thr(tid);
       thr->timer(Timer::START);
       ev_setup_thr(eflag, vflag, nall, this->eatom, this->vatom, nullptr, thr);
@@ -64,10 +73,7 @@ template <class Style> class PairSaltdemOMP : public Style, public ThrOMP {
                        double dy, double dz) {
         ev_tally_xyz_thr(this, i, j, nlocal, newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz, thr);
       };
-      if (this->evflag)
-        this->template loop<Style, 1>(this, ifrom, ito, thr->get_f(), thr->get_torque(), tally);
-      else
-        this->template loop<Style, 0>(this, ifrom, ito, thr->get_f(), thr->get_torque(), tally);
+      this->dispatch_loop(this, ifrom, ito, thr->get_f(), thr->get_torque(), tally);
 
       thr->timer(Timer::PAIR);
       reduce_thr(this, eflag, vflag, thr);

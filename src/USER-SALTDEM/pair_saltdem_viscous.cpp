@@ -14,6 +14,12 @@
 #include "error.h"
 #include "memory.h"
 #include "modify.h"
+#include "suffix.h"
+
+#include "omp_compat.h"
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #include <cfloat>
 #include <cmath>
@@ -144,6 +150,15 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
       eta[i][j] = p.eta;
       setflag[i][j] = 1;
       count++;
+      // under pair hybrid, whose restart files hold no coefficients, the pair_coeff given
+      // again after read_restart keeps the reference density of the file (same kernel h)
+      if (i == j && p.mode == SaltDEM::VISCOUS_FLUID && i < (int) rho0_restart.size() &&
+          rho0_restart[i] > 0.0 && fabs(h_restart[i] - p.h) <= 1e-12 * p.h) {
+        params[i][i].rho0 = rho0_restart[i];
+        if (comm->me == 0)
+          utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.15g} "
+                         "(from the restart file)\n", i, rho0_restart[i]);
+      }
     }
   if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients" + utils::errorurl(21));
 }
@@ -176,6 +191,8 @@ void PairSaltdemViscous::mix(int i, int j)
 
 void PairSaltdemViscous::init_style()
 {
+  rho0_restart.clear();    // only the pair_coeff commands before the first run keep them
+  h_restart.clear();
   dim2 = (domain->dimension == 2);
   volfac = dim2 ? M_PI : 4.0 * M_PI / 3.0;
   any_fluid = false;
@@ -198,30 +215,93 @@ void PairSaltdemViscous::init_style()
   PairSaltdem::init_style();
 }
 
-/* rho[i] += m_j q(i, j), rho[j] += m_i q(i, j) over the FLUID pairs of the
-   list (q symmetric under i <-> j), summed onto the owners with newton on */
+/* rho[i] += m_j q(i, j, p, d, rsq), rho[j] += m_i q(...) over the FLUID pairs of
+   the list closer than 2h (d = x_i - x_j, rsq = |d|^2; q symmetric under
+   i <-> j and zero from 2h on), summed onto the owners with newton on */
 
 template <class Q> void PairSaltdemViscous::sum_fluid_pairs(Q &&q)
 {
-  double **x = atom->x;
-  double *m = atom->rmass;
-  int *type = atom->type;
-  const int nlocal = atom->nlocal;
-  const int newton_pair = force->newton_pair;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    const int *jlist = list->firstneigh[i];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const auto &p = params[type[i]][type[j]];
-      if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
-      const double d[3] = {x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]};
-      const double w = q(i, j, p, d);
-      rho[i] += m[j] * w;
-      if (newton_pair || j < nlocal) rho[j] += m[i] * w;
+  if (domain->dimension == 2)
+    sum_fluid_pairs_dim<2>(q);
+  else
+    sum_fluid_pairs_dim<3>(q);
+  if (force->newton_pair) comm->reverse_comm(this);
+}
+
+/* DIM 2: d[2] = 0, not read from the positions (see saltdem_contact.h).
+   Under the OpenMP variant (-sf omp) the pairs are summed by the threads into
+   private arrays (slices of equal work, PairSaltdem::thread_bounds), then
+   added to rho. */
+
+template <int DIM, class Q> void PairSaltdemViscous::sum_fluid_pairs_dim(Q &q)
+{
+  if (!atom->x) return;
+  const int nall = atom->nlocal + atom->nghost;
+  const int nthreads = (suffix_flag & Suffix::OMP) ? comm->nthreads : 1;
+  if (nthreads == 1) {
+    sum_fluid_slice<DIM>(q, 0, list->inum, rho);
+    return;
+  }
+  if ((bigint) nthreads * nall > (bigint) rho_thr.size()) rho_thr.resize((size_t) nthreads * nall);
+  const int *bounds = thread_bounds(nthreads);
+  double *partial = rho_thr.data();
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nthreads) LMP_DEFAULT_NONE LMP_SHARED(q, bounds, partial, nall, nthreads)
+#endif
+  {
+#if defined(_OPENMP)
+    const int tid = omp_get_thread_num();
+#else
+    const int tid = 0;
+#endif
+    double *mine = partial + (size_t) tid * nall;
+    for (int i = 0; i < nall; i++) mine[i] = 0.0;
+    sum_fluid_slice<DIM>(q, bounds[tid], bounds[tid + 1], mine);
+#if defined(_OPENMP)
+#pragma omp barrier
+#pragma omp for schedule(static)
+#endif
+    for (int i = 0; i < nall; i++) {
+      double add = 0.0;
+      for (int t = 0; t < nthreads; t++) add += partial[(size_t) t * nall + i];
+      rho[i] += add;
     }
   }
-  if (newton_pair) comm->reverse_comm(this);
+}
+
+template <int DIM, class Q>
+void PairSaltdemViscous::sum_fluid_slice(Q &q, int ifrom, int ito, double *out)
+{
+  const auto x = (const double (*)[3]) atom->x[0];
+  const double *m = atom->rmass;
+  const int *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  const int *ilist = list->ilist;
+  const int *numneigh = list->numneigh;
+  int **firstneigh = list->firstneigh;
+  for (int ii = ifrom; ii < ito; ii++) {
+    const int i = ilist[ii];
+    const int *jlist = firstneigh[i];
+    const int jnum = numneigh[i];
+    const SaltDEM::ViscousParams *prow = params[type[i]];
+    const double xi0 = x[i][0], xi1 = x[i][1], xi2 = (DIM == 3) ? x[i][2] : 0.0;
+    const double mi = m[i];
+    for (int jj = 0; jj < jnum; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const SaltDEM::ViscousParams &p = prow[type[j]];
+      if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
+      const double d[3] = {xi0 - x[j][0], xi1 - x[j][1], (DIM == 3) ? xi2 - x[j][2] : 0.0};
+      const double rsq = (DIM == 3) ? d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+                                    : d[0] * d[0] + d[1] * d[1];
+      // q vanishes from r = 2h on; the margin keeps every pair whose q the rounding of
+      // sqrt could still make nonzero
+      if (rsq >= 4.000000000004 * p.h * p.h) continue;
+      const double w = q(i, j, p, d, rsq);
+      out[i] += m[j] * w;
+      if (newton_pair || j < nlocal) out[j] += mi * w;
+    }
+  }
 }
 
 /* FLUID density, volume and pressure.  The density of a fluid particle is
@@ -266,21 +346,39 @@ void PairSaltdemViscous::pre_loop()
       const int t = type[i];
       rho[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(dim, params[t][t].h, 0.0) : 0.0;
     }
-    sum_fluid_pairs([&](int, int, const SaltDEM::ViscousParams &p, const double *d) {
-      return SaltDEM::wendland_c2(dim, p.h, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    sum_fluid_pairs([&](int, int, const SaltDEM::ViscousParams &p, const double *, double rsq) {
+      return SaltDEM::wendland_c2(dim, p.h, sqrt(rsq));
     });
-    std::vector<double> sum(2 * (nt + 1), 0.0), all(2 * (nt + 1));
+    // per type: kernel density sum and count, and the continuity densities that atoms
+    // already carry (from an earlier run or a restart file) with their count
+    std::vector<double> sum(4 * (nt + 1), 0.0), all(4 * (nt + 1));
     for (int i = 0; i < nlocal; i++) {
-      sum[2 * type[i]] += rho[i];
-      sum[2 * type[i] + 1] += 1.0;
+      sum[4 * type[i]] += rho[i];
+      sum[4 * type[i] + 1] += 1.0;
+      if (rhoc[i] > 0.0) {
+        sum[4 * type[i] + 2] += rhoc[i];
+        sum[4 * type[i] + 3] += 1.0;
+      }
     }
-    MPI_Allreduce(sum.data(), all.data(), 2 * (nt + 1), MPI_DOUBLE, MPI_SUM, world);
+    MPI_Allreduce(sum.data(), all.data(), 4 * (nt + 1), MPI_DOUBLE, MPI_SUM, world);
     for (int t = 1; t <= nt; t++)
-      if (fluidself[t] && params[t][t].rho0 <= 0.0 && all[2 * t + 1] > 0.0) {
-        params[t][t].rho0 = all[2 * t] / all[2 * t + 1];
+      if (fluidself[t] && params[t][t].rho0 <= 0.0 && all[4 * t + 1] > 0.0) {
+        params[t][t].rho0 = all[4 * t] / all[4 * t + 1];
         if (comm->me == 0)
           utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.15g}\n",
                          t, params[t][t].rho0);
+        if (all[4 * t + 3] > 0.0 && comm->me == 0) {
+          const double carried = all[4 * t + 2] / all[4 * t + 3];
+          error->warning(FLERR,
+                         "Pair style saltdem/viscous: the reference density of fluid type {} was "
+                         "measured again ({:.6g}) while its atoms carry densities from an earlier "
+                         "run or a restart file: their pressure is reset (mean now {:.3g}), and a "
+                         "fluid under load loses the pressure that carried it. After read_restart "
+                         "give only the pair_coeff commands, not pair_style, to keep the "
+                         "reference density of the file",
+                         t, params[t][t].rho0,
+                         params[t][t].K * (carried / params[t][t].rho0 - 1.0));
+        }
       }
   }
   for (int i = 0; i < nlocal; i++)
@@ -289,12 +387,14 @@ void PairSaltdemViscous::pre_loop()
   // continuity (not during setup, like the history of the contact styles)
   if (!update->setupflag) {
     for (int i = 0; i < nall; i++) rho[i] = 0.0;
-    sum_fluid_pairs([&](int i, int j, const SaltDEM::ViscousParams &p, const double *d) {
-      const double s = 1.0 - 0.5 * sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / p.h;
+    const auto vv = (const double (*)[3])(v ? v[0] : nullptr);    // rows of 3
+    sum_fluid_pairs([&](int i, int j, const SaltDEM::ViscousParams &p, const double *d, double rsq) {
+      const double s = 1.0 - 0.5 * sqrt(rsq) / p.h;
       if (s <= 0.0) return 0.0;
       // v_ij . grad_i W_ij, with grad_i W = -cw (1 - r/2h)^3 (x_i - x_j)
-      return -p.cw * s * s * s *
-          ((v[i][0] - v[j][0]) * d[0] + (v[i][1] - v[j][1]) * d[1] + (v[i][2] - v[j][2]) * d[2]);
+      double vd = (vv[i][0] - vv[j][0]) * d[0] + (vv[i][1] - vv[j][1]) * d[1];
+      if (!dim2) vd += (vv[i][2] - vv[j][2]) * d[2];
+      return -p.cw * s * s * s * vd;
     });
     const double dt = update->dt;
     for (int i = 0; i < nlocal; i++)
@@ -445,6 +545,9 @@ void PairSaltdemViscous::read_restart(FILE *fp)
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j]) eta[i][j] = params[i][j].eta;
+  // the coefficients came with the file: a pair_coeff given again resets rho0 as usual
+  rho0_restart.clear();
+  h_restart.clear();
 }
 
 void PairSaltdemViscous::write_restart_settings(FILE *fp)
@@ -453,6 +556,18 @@ void PairSaltdemViscous::write_restart_settings(FILE *fp)
   fwrite(&correction, sizeof(double), 1, fp);
   fwrite(&dtfactor, sizeof(double), 1, fp);
   fwrite(&viscfactor, sizeof(double), 1, fp);
+  // the reference density (and h) of each fluid type: pair hybrid writes only the settings of
+  // its sub-styles, and a restarted fluid must not measure it again
+  const int n = allocated ? atom->ntypes : 0;
+  fwrite(&n, sizeof(int), 1, fp);
+  for (int t = 1; t <= n; t++) {
+    double v[2] = {0.0, 0.0};
+    if (setflag[t][t] && params[t][t].mode == SaltDEM::VISCOUS_FLUID) {
+      v[0] = params[t][t].rho0;
+      v[1] = params[t][t].h;
+    }
+    fwrite(v, sizeof(double), 2, fp);
+  }
 }
 
 void PairSaltdemViscous::read_restart_settings(FILE *fp)
@@ -464,6 +579,18 @@ void PairSaltdemViscous::read_restart_settings(FILE *fp)
   correction = buf[1];
   dtfactor = buf[2];
   viscfactor = buf[3];
+  int n = 0;
+  if (comm->me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&n, 1, MPI_INT, 0, world);
+  std::vector<double> v(2 * n + 2, 0.0);
+  if (comm->me == 0 && n > 0) utils::sfread(FLERR, v.data(), sizeof(double), 2 * n, fp, nullptr, error);
+  MPI_Bcast(v.data(), 2 * n, MPI_DOUBLE, 0, world);
+  rho0_restart.assign(n + 1, 0.0);
+  h_restart.assign(n + 1, 0.0);
+  for (int t = 1; t <= n; t++) {
+    rho0_restart[t] = v[2 * (t - 1)];
+    h_restart[t] = v[2 * (t - 1) + 1];
+  }
 }
 
 /* "eta": per type pair viscosity (dim 2), read and changed by fix adapt and

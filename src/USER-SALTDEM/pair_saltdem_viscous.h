@@ -13,6 +13,8 @@ PairStyle(saltdem/viscous,PairSaltdemViscous);
 
 #include "pair_saltdem.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class PairSaltdemViscous : public PairSaltdem {
@@ -34,21 +36,36 @@ class PairSaltdemViscous : public PairSaltdem {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
-  // the force law, inlined into the shared pair loop
-  bool law(int i, int j, int itype, int jtype, const SaltDEM::Contact &c, double *, bool,
-           double *f, double *ti, double *tj, double &evdwl) const
+  // the force law, inlined into the shared pair loop (PairSaltdem::loop): FLUID pairs need
+  // only positions and velocities of the centres and make no torque
+  template <int DIM, int EVFLAG>
+  int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *, bool,
+          double *f, double *ti, double *tj, double &evdwl) const
   {
-    // SPH pressure m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) with a_i = m_i P_i / rho_i^2;
-    // a particle that is not fluid (wall, cover) mirrors the fluid's pressure
-    const double *m = atom->rmass;
-    double pc = 0.0;
-    if (isfluid[itype] && isfluid[jtype])
-      pc = m[j] * apress[i] + m[i] * apress[j];
-    else if (isfluid[itype])
-      pc = 2.0 * m[j] * apress[i];
-    else if (isfluid[jtype])
-      pc = 2.0 * m[i] * apress[j];
-    return SaltDEM::viscous_force(params[itype][jtype], c, vol[i], vol[j], pc, f, ti, tj, evdwl);
+    const SaltDEM::ViscousParams &p = params[itype][jtype];
+    SaltDEM::Contact c;
+    if (p.mode == SaltDEM::VISCOUS_FLUID) {
+      SaltDEM::fluid_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.radius[i], a.radius[j], r,
+                                     c);
+      // SPH pressure m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) with a_i = m_i P_i / rho_i^2;
+      // a particle that is not fluid (wall, cover) mirrors the fluid's pressure
+      const double *m = a.rmass;
+      double pc = 0.0;
+      if (isfluid[itype] && isfluid[jtype])
+        pc = m[j] * apress[i] + m[i] * apress[j];
+      else if (isfluid[itype])
+        pc = 2.0 * m[j] * apress[i];
+      else if (isfluid[jtype])
+        pc = 2.0 * m[i] * apress[j];
+      return SaltDEM::viscous_fluid_force<DIM, EVFLAG>(p, c, vol[i], vol[j], pc, f, evdwl)
+          ? LAW_TOUCH
+          : 0;
+    }
+    SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],
+                                     a.radius[i], a.radius[j], a.rmass[i], a.rmass[j], r, c,
+                                     false);
+    return (SaltDEM::viscous_contact_force<DIM, EVFLAG>(p, c, f, ti, tj, evdwl) ? LAW_TOUCH : 0) |
+        LAW_TORQUE;
   }
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
@@ -73,8 +90,14 @@ class PairSaltdemViscous : public PairSaltdem {
   double viscfactor;  // safety factor on the viscous stable dt
   bool dim2;          // 2D: discs
   double volfac;      // pi (2D) or 4 pi / 3 (3D)
+  // reference density and h per fluid type from a restart file under pair hybrid (which
+  // stores no coefficients, only sub-style settings): kept by the pair_coeff given again
+  std::vector<double> rho0_restart, h_restart;
 
   template <class Q> void sum_fluid_pairs(Q &&q);
+  template <int DIM, class Q> void sum_fluid_pairs_dim(Q &q);
+  template <int DIM, class Q> void sum_fluid_slice(Q &q, int ifrom, int ito, double *out);
+  std::vector<double> rho_thr;    // -sf omp: per-thread partial sums of sum_fluid_pairs
   void allocate_params(int) override;
   void *pair_params(int i, int j) override { return &params[i][j]; }
   size_t params_size() const override { return sizeof(SaltDEM::ViscousParams); }

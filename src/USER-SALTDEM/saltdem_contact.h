@@ -10,6 +10,13 @@
    Sign conventions: n points from j to i; the force returned acts on i
    (j receives its negative); torques are returned separately for i and j
    because the lever arms differ.
+
+   Template parameters: DIM = 2 for discs in the xy plane, where the z parts
+   of positions, velocities and forces and the x, y parts of angular
+   velocities and torques are zero (LAMMPS creates 2D atoms at z = 0 and fix
+   enforce2d keeps them there): those parts are neither read nor written,
+   which drops only exact zeros from the 3D arithmetic, so both give the
+   same numbers.  EVFLAG = 0 skips the energy (evdwl is left unset).
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_SALTDEM_CONTACT_H
@@ -33,45 +40,92 @@ struct Contact {
   double reff;        // reduced radius r_i r_j / (r_i + r_j)
 };
 
-/* Fill c for discs/spheres i and j.  r > 0 is required (callers skip r == 0). */
+/* Fill c for discs/spheres i and j.  r > 0 is required (callers skip r == 0).
+   want_reff = false leaves c.reff unset (only rolling resistance reads it). */
+template <int DIM = 3>
 inline void contact_kinematics(const double *xi, const double *xj, const double *vi,
                                const double *vj, const double *wi, const double *wj, double radi,
-                               double radj, double mi, double mj, double r, Contact &c)
+                               double radj, double mi, double mj, double r, Contact &c,
+                               bool want_reff = true)
 {
   const double rinv = 1.0 / r;
   c.n[0] = (xi[0] - xj[0]) * rinv;
   c.n[1] = (xi[1] - xj[1]) * rinv;
-  c.n[2] = (xi[2] - xj[2]) * rinv;
+  c.n[2] = (DIM == 3) ? (xi[2] - xj[2]) * rinv : 0.0;
   c.r = r;
   c.delta = radi + radj - r;
   // the contact point sits at the middle of the overlap (or gap)
   c.li = radi - 0.5 * c.delta;
   c.lj = radj - 0.5 * c.delta;
 
-  const double vr0 = vi[0] - vj[0], vr1 = vi[1] - vj[1], vr2 = vi[2] - vj[2];
+  const double vr0 = vi[0] - vj[0], vr1 = vi[1] - vj[1];
   c.vr[0] = vr0;
   c.vr[1] = vr1;
-  c.vr[2] = vr2;
-  c.vn = vr0 * c.n[0] + vr1 * c.n[1] + vr2 * c.n[2];
-  // rotation adds -(li w_i + lj w_j) x n at the contact point
-  const double w0 = c.li * wi[0] + c.lj * wj[0];
-  const double w1 = c.li * wi[1] + c.lj * wj[1];
-  const double w2 = c.li * wi[2] + c.lj * wj[2];
-  c.vt[0] = vr0 - c.vn * c.n[0] - (w1 * c.n[2] - w2 * c.n[1]);
-  c.vt[1] = vr1 - c.vn * c.n[1] - (w2 * c.n[0] - w0 * c.n[2]);
-  c.vt[2] = vr2 - c.vn * c.n[2] - (w0 * c.n[1] - w1 * c.n[0]);
-  c.wr[0] = wi[0] - wj[0];
-  c.wr[1] = wi[1] - wj[1];
-  c.wr[2] = wi[2] - wj[2];
+  if (DIM == 3) {
+    const double vr2 = vi[2] - vj[2];
+    c.vr[2] = vr2;
+    c.vn = vr0 * c.n[0] + vr1 * c.n[1] + vr2 * c.n[2];
+    // rotation adds -(li w_i + lj w_j) x n at the contact point
+    const double w0 = c.li * wi[0] + c.lj * wj[0];
+    const double w1 = c.li * wi[1] + c.lj * wj[1];
+    const double w2 = c.li * wi[2] + c.lj * wj[2];
+    c.vt[0] = vr0 - c.vn * c.n[0] - (w1 * c.n[2] - w2 * c.n[1]);
+    c.vt[1] = vr1 - c.vn * c.n[1] - (w2 * c.n[0] - w0 * c.n[2]);
+    c.vt[2] = vr2 - c.vn * c.n[2] - (w0 * c.n[1] - w1 * c.n[0]);
+    c.wr[0] = wi[0] - wj[0];
+    c.wr[1] = wi[1] - wj[1];
+    c.wr[2] = wi[2] - wj[2];
+  } else {
+    c.vr[2] = 0.0;
+    c.vn = vr0 * c.n[0] + vr1 * c.n[1];
+    // the 3D expressions with n[2] = w0 = w1 = 0
+    const double w2 = c.li * wi[2] + c.lj * wj[2];
+    c.vt[0] = vr0 - c.vn * c.n[0] + w2 * c.n[1];
+    c.vt[1] = vr1 - c.vn * c.n[1] - w2 * c.n[0];
+    c.vt[2] = 0.0;
+    c.wr[0] = c.wr[1] = 0.0;
+    c.wr[2] = wi[2] - wj[2];
+  }
 
   c.meff = (mi > 0.0 && mj > 0.0) ? mi * mj / (mi + mj) : (mi > 0.0 ? mi : mj);
-  c.reff = radi * radj / (radi + radj);
+  if (want_reff) c.reff = radi * radj / (radi + radj);
+}
+
+/* What the fluid law of saltdem/viscous reads: n, r, delta and the relative
+   velocity of the centres (the same values as contact_kinematics). */
+template <int DIM = 3>
+inline void fluid_kinematics(const double *xi, const double *xj, const double *vi,
+                             const double *vj, double radi, double radj, double r, Contact &c)
+{
+  const double rinv = 1.0 / r;
+  c.n[0] = (xi[0] - xj[0]) * rinv;
+  c.n[1] = (xi[1] - xj[1]) * rinv;
+  c.n[2] = (DIM == 3) ? (xi[2] - xj[2]) * rinv : 0.0;
+  c.r = r;
+  c.delta = radi + radj - r;
+  c.vr[0] = vi[0] - vj[0];
+  c.vr[1] = vi[1] - vj[1];
+  c.vr[2] = (DIM == 3) ? vi[2] - vj[2] : 0.0;
 }
 
 /* Keep a history vector in the tangent plane as the contact rotates, with
    its length unchanged (frame-indifferent spring). */
-inline void rotate_into_plane(double *h, const double *n)
+template <int DIM = 3> inline void rotate_into_plane(double *h, const double *n)
 {
+  if (DIM == 2) {    // h[2] stays 0
+    const double hn = h[0] * n[0] + h[1] * n[1];
+    if (hn == 0.0) return;
+    const double before = h[0] * h[0] + h[1] * h[1];
+    h[0] -= hn * n[0];
+    h[1] -= hn * n[1];
+    const double after = h[0] * h[0] + h[1] * h[1];
+    if (after > 0.0) {
+      const double s = std::sqrt(before / after);
+      h[0] *= s;
+      h[1] *= s;
+    }
+    return;
+  }
   const double hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
   if (hn == 0.0) return;
   const double before = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
@@ -89,8 +143,16 @@ inline void rotate_into_plane(double *h, const double *n)
 
 /* Torque contributions of a tangential force ft applied at the contact:
    ti = -li (n x ft), tj = -lj (n x ft). */
+template <int DIM = 3>
 inline void contact_torques(const Contact &c, const double *ft, double *ti, double *tj)
 {
+  if (DIM == 2) {    // only the z parts: n x ft = (0, 0, n0 ft1 - n1 ft0)
+    const double nx2 = c.n[0] * ft[1] - c.n[1] * ft[0];
+    ti[0] = ti[1] = tj[0] = tj[1] = 0.0;
+    ti[2] = -c.li * nx2;
+    tj[2] = -c.lj * nx2;
+    return;
+  }
   const double nx0 = c.n[1] * ft[2] - c.n[2] * ft[1];
   const double nx1 = c.n[2] * ft[0] - c.n[0] * ft[2];
   const double nx2 = c.n[0] * ft[1] - c.n[1] * ft[0];
@@ -150,8 +212,10 @@ inline double cohesive_normal_energy(const CohesiveParams &p, double delta)
 /* The cover law.  hist: 3 tangential (+3 rolling) values, kept while the
    discs touch.  f: force on i.  ti, tj: torques on i and j.  advance: move
    the history on (false during setup, as in LAMMPS's granular styles).
-   evdwl: elastic energy stored in the contact.  Returns true while the
-   discs touch (delta > 0); in the cohesive gap only the normal force acts. */
+   evdwl: elastic energy stored in the contact (EVFLAG only).  Returns true
+   while the discs touch (delta > 0); in the cohesive gap only the normal
+   force acts (ti, tj are then left unset). */
+template <int DIM = 3, int EVFLAG = 1>
 inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hist, bool rolling,
                            double dt, bool advance, double *f, double *ti, double *tj,
                            double &evdwl)
@@ -159,64 +223,80 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
   // normal: elastic/cohesive + viscous damping (critical ratio zeta_n)
   const double fn_el = cohesive_normal(p, c.delta);
   const double fn = fn_el - 2.0 * p.zeta_n * std::sqrt(c.meff * p.kn) * c.vn;
-  evdwl = cohesive_normal_energy(p, c.delta);
-  for (int k = 0; k < 3; k++) f[k] = fn * c.n[k];
-  ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
+  if (EVFLAG) evdwl = cohesive_normal_energy(p, c.delta);
+  for (int k = 0; k < DIM; k++) f[k] = fn * c.n[k];
   if (c.delta <= 0.0) return false;
 
   // tangential spring with the Mohr-Coulomb limit c + mu Fn (Fn elastic,
   // compressive here); sliding caps the force and resets the spring to it
   double *xi = hist;
-  rotate_into_plane(xi, c.n);
+  rotate_into_plane<DIM>(xi, c.n);
   if (advance)    // the spring first follows this step's sliding, as in gran/hooke/history
-    for (int k = 0; k < 3; k++) xi[k] += c.vt[k] * dt;
+    for (int k = 0; k < DIM; k++) xi[k] += c.vt[k] * dt;
   const double gt = 2.0 * p.zeta_t * std::sqrt(c.meff * p.kt);
   double ft[3];
-  for (int k = 0; k < 3; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
+  for (int k = 0; k < DIM; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
+  if (DIM == 2) ft[2] = 0.0;
   const double fmax = p.coh + p.mu * fn_el;
-  const double ftmag = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+  const double ftmag = (DIM == 3) ? std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2])
+                                  : std::sqrt(ft[0] * ft[0] + ft[1] * ft[1]);
   if (ftmag > fmax) {
     const double s = fmax / ftmag;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < DIM; k++) {
       ft[k] *= s;
       if (p.kt > 0.0) xi[k] = -(ft[k] + gt * c.vt[k]) / p.kt;
     }
   }
-  evdwl += 0.5 * p.kt * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-  for (int k = 0; k < 3; k++) f[k] += ft[k];
-  contact_torques(c, ft, ti, tj);
+  if (EVFLAG)
+    evdwl += 0.5 * p.kt *
+        ((DIM == 3) ? xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] : xi[0] * xi[0] + xi[1] * xi[1]);
+  for (int k = 0; k < DIM; k++) f[k] += ft[k];
+  contact_torques<DIM>(c, ft, ti, tj);
 
   // rolling resistance: elastic-plastic spring (stiffness kr) on the rolling
   // displacement, rate reff (w_i - w_j) x n (Wang et al. 2015), limited by
   // mur * Fn; the resisting torque is reff n x fr
   if (rolling && p.kr > 0.0) {
     double *psi = hist + 3;
-    rotate_into_plane(psi, c.n);
-    const double vr[3] = {c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]),
-                          c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]),
-                          c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0])};
+    rotate_into_plane<DIM>(psi, c.n);
+    double vr[3], fr[3];
+    if (DIM == 3) {
+      vr[0] = c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]);
+      vr[1] = c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]);
+      vr[2] = c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0]);
+    } else {    // the 3D expressions with n[2] = wr[0] = wr[1] = 0
+      vr[0] = c.reff * -(c.wr[2] * c.n[1]);
+      vr[1] = c.reff * (c.wr[2] * c.n[0]);
+      vr[2] = 0.0;
+    }
     if (advance)
-      for (int k = 0; k < 3; k++) psi[k] += vr[k] * dt;
-    double fr[3];
-    for (int k = 0; k < 3; k++) fr[k] = -p.kr * psi[k];
+      for (int k = 0; k < DIM; k++) psi[k] += vr[k] * dt;
+    for (int k = 0; k < DIM; k++) fr[k] = -p.kr * psi[k];
+    if (DIM == 2) fr[2] = 0.0;
     const double frmax = p.mur * fn_el;
-    const double frmag = std::sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]);
+    const double frmag = (DIM == 3) ? std::sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2])
+                                    : std::sqrt(fr[0] * fr[0] + fr[1] * fr[1]);
     if (frmag > frmax) {
       const double s = frmax / frmag;
-      for (int k = 0; k < 3; k++) {
+      for (int k = 0; k < DIM; k++) {
         fr[k] *= s;
         psi[k] = -fr[k] / p.kr;
       }
     }
-    evdwl += 0.5 * p.kr * (psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]);
-    const double tr0 = c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]);
-    const double tr1 = c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]);
+    if (EVFLAG)
+      evdwl += 0.5 * p.kr *
+          ((DIM == 3) ? psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]
+                      : psi[0] * psi[0] + psi[1] * psi[1]);
+    if (DIM == 3) {
+      const double tr0 = c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]);
+      const double tr1 = c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]);
+      ti[0] += tr0;
+      ti[1] += tr1;
+      tj[0] -= tr0;
+      tj[1] -= tr1;
+    }
     const double tr2 = c.reff * (c.n[0] * fr[1] - c.n[1] * fr[0]);
-    ti[0] += tr0;
-    ti[1] += tr1;
     ti[2] += tr2;
-    tj[0] -= tr0;
-    tj[1] -= tr1;
     tj[2] -= tr2;
   }
   return true;
@@ -275,33 +355,56 @@ inline double wendland_c2_grad_over_r(int dimension, double h)
                           : 105.0 / (16.0 * M_PI * h * h * h * h * h);
 }
 
-/* voli, volj: particle volumes m/rho (FLUID); pc: the SPH pressure pair
-   coefficient m_i m_j (P_i/rho_i^2 + P_j/rho_j^2).  Returns true while the
-   discs touch. */
-inline bool viscous_force(const ViscousParams &p, const Contact &c, double voli, double volj,
-                          double pc, double *f, double *ti, double *tj, double &evdwl)
+/* FLUID: the Morris viscosity and the SPH pressure between particles of
+   volumes voli, volj (m/rho); pc: the SPH pressure pair coefficient
+   m_i m_j (P_i/rho_i^2 + P_j/rho_j^2).  Reads c.n, c.r, c.delta and c.vr
+   only (fluid_kinematics); no torque.  Returns true while the discs touch. */
+template <int DIM = 3, int EVFLAG = 1>
+inline bool viscous_fluid_force(const ViscousParams &p, const Contact &c, double voli,
+                                double volj, double pc, double *f, double &evdwl)
 {
   const bool touching = c.delta > 0.0;
   const double fel = touching ? p.kn * c.delta : 0.0;
-  evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
-  if (p.mode == VISCOUS_FLUID) {
-    const double s = 1.0 - 0.5 * c.r / p.h;
-    const double s3 = (s > 0.0) ? s * s * s : 0.0;
-    const double g = p.kfac * voli * volj * s3;    // Morris viscosity
-    // pressure: -pc grad W, repulsive for P > 0
-    const double fn = pc * p.cw * s3 * c.r + fel;
-    for (int k = 0; k < 3; k++) f[k] = fn * c.n[k] - g * c.vr[k];
-    ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
-    return touching;
-  }
+  if (EVFLAG) evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
+  const double s = 1.0 - 0.5 * c.r / p.h;
+  const double s3 = (s > 0.0) ? s * s * s : 0.0;
+  const double g = p.kfac * voli * volj * s3;    // Morris viscosity
+  // pressure: -pc grad W, repulsive for P > 0
+  const double fn = pc * p.cw * s3 * c.r + fel;
+  for (int k = 0; k < DIM; k++) f[k] = fn * c.n[k] - g * c.vr[k];
+  return touching;
+}
+
+/* CONTACT: elastic repulsion and dashpots at the contact point (full
+   contact_kinematics; reff is not read). */
+template <int DIM = 3, int EVFLAG = 1>
+inline bool viscous_contact_force(const ViscousParams &p, const Contact &c, double *f, double *ti,
+                                  double *tj, double &evdwl)
+{
+  const bool touching = c.delta > 0.0;
+  const double fel = touching ? p.kn * c.delta : 0.0;
+  if (EVFLAG) evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
   const double fn = fel - p.gn * c.vn;
-  double ft[3];
-  for (int k = 0; k < 3; k++) {
+  double ft[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < DIM; k++) {
     ft[k] = -p.gt * c.vt[k];
     f[k] = fn * c.n[k] + ft[k];
   }
-  contact_torques(c, ft, ti, tj);
+  contact_torques<DIM>(c, ft, ti, tj);
   return touching;
+}
+
+/* Either form, by p.mode (c from contact_kinematics). */
+template <int DIM = 3, int EVFLAG = 1>
+inline bool viscous_force(const ViscousParams &p, const Contact &c, double voli, double volj,
+                          double pc, double *f, double *ti, double *tj, double &evdwl)
+{
+  if (p.mode == VISCOUS_FLUID) {
+    ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
+    if (DIM == 2) f[2] = 0.0;
+    return viscous_fluid_force<DIM, EVFLAG>(p, c, voli, volj, pc, f, evdwl);
+  }
+  return viscous_contact_force<DIM, EVFLAG>(p, c, f, ti, tj, evdwl);
 }
 
 }    // namespace SaltDEM

@@ -22,6 +22,7 @@ Knobs (docs/performance.md explains each):
   speedup     drive velocity x k and viscosity / k (eta V constant), dt x k up to the elastic
               wall limit: the run reaches its displacement k times sooner
   skin        neighbour skin (the list is rebuilt as needed: no effect on the result)
+  kernel      SPH smoothing length h: fewer neighbours within 2h, less work, a noisier sum
 
 The cost is the CPU time of the LAMMPS process (on a busy machine the wall time of one run
 says less), measured on the machine that runs the script.  Writes OUT/results.json,
@@ -62,14 +63,16 @@ KNOBS = {
                     default=20.0),
     "speedup": dict(label="speed-up k (V x k, eta / k)", values=[8.0, 4.0, 2.0, 1.0], default=1.0),
     "skin": dict(label="neighbour skin (m)", values=[0.7, 2.8, 8.4, 28.0], default=2.8),
+    "kernel": dict(label="SPH smoothing length h (m; 2h holds ~21 discs at 28 m)",
+                   values=[28.0, 25.0, 23.0], default=28.0),
 }
 
 
 def settings(knob, value):
     """Deck settings of one run: radius factor f, dt, S, k, skin."""
-    s = dict(f=1.0, dt=DT0, S=S0, k=1.0, skin=0.1 * H_SALT)
+    s = dict(f=1.0, dt=DT0, S=S0, k=1.0, skin=0.1 * H_SALT, h=H_SALT)
     if knob == "resolution":
-        s.update(f=value, dt=DT0 * value ** 2, skin=0.1 * H_SALT * value)
+        s.update(f=value, dt=DT0 * value ** 2, skin=0.1 * H_SALT * value, h=H_SALT * value)
     elif knob == "dt":
         s.update(dt=value)
     elif knob == "inertia":
@@ -78,6 +81,8 @@ def settings(knob, value):
         s.update(k=value, dt=min(DT0 * value, DT_MAX_WALL))
     elif knob == "skin":
         s.update(skin=value)
+    elif knob == "kernel":
+        s.update(h=value)
     return s
 
 
@@ -144,7 +149,7 @@ def channel_run(flow, s, work, tag):
         "neighbor        $(0.1*v_h) bin", "neighbor        ${skin} bin"))
     args = ["-in", str(deck), "-log", "log.lammps", "-echo", "none", "-screen", "none"]
     for k, v in dict(pack=pack_for(f, work), eta=eta, V=V, gx=gx, S=s["S"], dt=s["dt"],
-                     nsteps=nsteps, rmax=rmax, h=H_SALT * f, skin=s["skin"]).items():
+                     nsteps=nsteps, rmax=rmax, h=s["h"], skin=s["skin"]).items():
         args += ["-var", k, str(v)]
     out, cpu, wall = run_lmp(args, d)
     log = (d / "log.lammps").read_text()

@@ -118,15 +118,19 @@ def test_assembly_layers_and_markers(assembly):
     # markers: 100 m salt bands across the width, 100 m cover layers over its thickness
     assert np.unique(mk[salt]).size == pytest.approx(g["width"] / g["marker"], abs=1)
     assert np.unique(mk[cover]).size == pytest.approx(g["cover"] / g["marker"], abs=1)
-    # settled: the worst overlap of the cover's contacts (cover-cover, cover-salt) below 2 % of
-    # the smallest radius.  Salt-salt pairs are SPH particles without a hard core (kn_salt 0):
-    # the salt's pressure keeps them apart on average, overlaps are not contacts there
+    # settled: the overlaps of the cover's contacts (cover-cover, cover-salt) stay small against
+    # the disc radii: mean under 2 % of the smaller radius, worst under 10 % of rmin (kn 2.5e9
+    # N/m of the calibrated cover under the weight of 700 m of it).  Salt-salt pairs are SPH
+    # particles without a hard core (kn_salt 0): their overlaps are not contacts
     p, rr, tt = np.c_[x, y][salt | cover], r[salt | cover], t[salt | cover]
     pairs = cKDTree(p).query_pairs(2 * rr.max(), output_type="ndarray")
     i, j = pairs[:, 0], pairs[:, 1]
     gap = np.hypot(*(p[i] - p[j]).T) - rr[i] - rr[j]
     withcover = (tt[i] == 1) | (tt[j] == 1)
-    assert -gap[withcover].min() < 0.02 * 25
+    touching = withcover & (gap < 0)
+    rel = -gap[touching] / np.minimum(rr[i], rr[j])[touching]
+    assert touching.sum() > 100 and rel.mean() < 0.02, rel.mean()
+    assert -gap[withcover].min() < 0.10 * 25
     assert -gap[~withcover].min() < 0.5 * 25    # salt: no disc sits on top of another
     line = [l for l in proc.stdout.splitlines() if l.startswith("pack:")][0]
     phi = float(line.split("packing fraction")[1].split(",")[0])

@@ -41,6 +41,11 @@ class PairSaltdem : public Pair {
   void transfer_history(double *, double *, int, int) override;
   double memory_usage() override;
   virtual void pre_loop() {}    // per-step work before the pair loop (all threads joined)
+  // a per-atom sum the law feeds while the forces are computed (see loop()): the array
+  // thread tid of nthreads adds into (nullptr: the law has none), and what to do with the
+  // sums once every thread has finished
+  virtual double *loop_sum(int /*tid*/, int /*nthreads*/) { return nullptr; }
+  virtual void post_loop(int /*nthreads*/) {}
 
   // what a law returns: the discs touch (history kept), the law made torques
   enum { LAW_TOUCH = 1, LAW_TORQUE = 2 };
@@ -56,29 +61,33 @@ class PairSaltdem : public Pair {
   // the serial and the threaded styles.  The derived style's inline law
   //   template <int DIM, int EVFLAG> int law(const Atoms &, int i, int j, int itype,
   //     int jtype, double r, double *hist, bool advance, double *f, double *ti,
-  //     double *tj, double &evdwl)
+  //     double *tj, double &evdwl, double &q)
   // computes the kinematics it needs, fills the force on i (and torques on i
-  // and j if it returns LAW_TORQUE) and returns LAW_* flags; tally() receives
+  // and j if it returns LAW_TORQUE) and returns LAW_* flags.  A law with a
+  // per-atom pair sum (Derived::PAIR_SUM, e.g. the continuity density of the
+  // fluid) sets q, symmetric under i <-> j: sum[i] += m_j q, sum[j] += m_i q
+  // (sum: loop_sum(), so the sum costs no second pass).  tally() receives
   // (i, j, evdwl, fx, fy, fz, delx, dely, delz).  DIM 2: discs in the xy
   // plane (z parts are zero and are not touched, see saltdem_contact.h).
   template <class Derived, int EVFLAG, int DIM, class Tally>
-  void loop(Derived *self, int ifrom, int ito, double **f, double **torque, Tally &&tally);
+  void loop(Derived *self, int ifrom, int ito, double **f, double **torque, double *sum,
+            Tally &&tally);
 
   // loop() for the run's energy/virial flag and dimension
   template <class Derived, class Tally>
   void dispatch_loop(Derived *self, int ifrom, int ito, double **f, double **torque,
-                     Tally &&tally)
+                     double *sum, Tally &&tally)
   {
     if (domain->dimension == 2) {
       if (evflag)
-        loop<Derived, 1, 2>(self, ifrom, ito, f, torque, tally);
+        loop<Derived, 1, 2>(self, ifrom, ito, f, torque, sum, tally);
       else
-        loop<Derived, 0, 2>(self, ifrom, ito, f, torque, tally);
+        loop<Derived, 0, 2>(self, ifrom, ito, f, torque, sum, tally);
     } else {
       if (evflag)
-        loop<Derived, 1, 3>(self, ifrom, ito, f, torque, tally);
+        loop<Derived, 1, 3>(self, ifrom, ito, f, torque, sum, tally);
       else
-        loop<Derived, 0, 3>(self, ifrom, ito, f, torque, tally);
+        loop<Derived, 0, 3>(self, ifrom, ito, f, torque, sum, tally);
     }
   }
 
@@ -87,7 +96,7 @@ class PairSaltdem : public Pair {
   // it, e.g. the salt of a scene), re-split after each neighbour list build
   const int *thread_bounds(int nthreads);
 
-  // the serial compute() of a derived style: pre_loop(), then the loop over all pairs
+  // the serial compute() of a derived style: pre_loop(), the loop over all pairs, post_loop()
   template <class Derived> void compute_serial(Derived *self, int eflag, int vflag)
   {
     ev_init(eflag, vflag);
@@ -96,7 +105,8 @@ class PairSaltdem : public Pair {
                         double dy, double dz) {
       ev_tally_xyz(i, j, atom->nlocal, force->newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz);
     };
-    dispatch_loop(self, 0, list->inum, atom->f, atom->torque, tally);
+    dispatch_loop(self, 0, list->inum, atom->f, atom->torque, loop_sum(0, 1), tally);
+    post_loop(1);
   }
 
  protected:
@@ -132,13 +142,14 @@ class PairSaltdem : public Pair {
 
 template <class Derived, int EVFLAG, int DIM, class Tally>
 void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **torque,
-                       Tally &&tally)
+                       double *sum, Tally &&tally)
 {
   using row = const double (*)[3];
   const Atoms a = {atom->x ? (row) atom->x[0] : nullptr, atom->v ? (row) atom->v[0] : nullptr,
                    atom->omega ? (row) atom->omega[0] : nullptr, atom->radius, atom->rmass};
   const auto x = a.x;
   const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
@@ -185,9 +196,13 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
         }
         continue;
       }
-      double evdwl = 0.0;
+      double evdwl = 0.0, q = 0.0;
       const int flags = self->template law<DIM, EVFLAG>(a, i, j, itype, jtype, std::sqrt(rsq),
-                                                        hist, advance, fij, ti, tj, evdwl);
+                                                        hist, advance, fij, ti, tj, evdwl, q);
+      if (Derived::PAIR_SUM) {
+        sum[i] += rmass[j] * q;
+        if (newton_pair || j < nlocal) sum[j] += rmass[i] * q;
+      }
       if (nhist) {
         if (flags & LAW_TOUCH)
           touch[jj] = 1;

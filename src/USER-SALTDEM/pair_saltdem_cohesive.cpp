@@ -119,6 +119,7 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
                "at which the attraction peaks",
                p.range, p.tens / p.kn);
 
+  SaltDEM::cohesive_derive(p);
   int count = 0;
   for (int i = ilo; i <= ihi; i++)
     for (int j = MAX(jlo, i); j <= jhi; j++) {
@@ -149,6 +150,7 @@ void PairSaltdemCohesive::mix(int i, int j)
   p.zeta_n = 0.5 * (a.zeta_n + b.zeta_n);
   p.zeta_t = 0.5 * (a.zeta_t + b.zeta_t);
   if (p.tens > 0.0 && p.range <= p.tens / p.kn) p.range = 1.01 * p.tens / p.kn;
+  SaltDEM::cohesive_derive(p);
 }
 
 /* ---------------------------------------------------------------------- */

@@ -27,10 +27,11 @@ class PairSaltdemCohesive : public PairSaltdem {
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
 
-  // the force law, inlined into the shared pair loop (PairSaltdem::loop)
+  // the force law, inlined into the shared pair loop (PairSaltdem::loop); no per-atom sum
+  static constexpr bool PAIR_SUM = false;
   template <int DIM, int EVFLAG>
   int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *hist,
-          bool advance, double *f, double *ti, double *tj, double &evdwl) const
+          bool advance, double *f, double *ti, double *tj, double &evdwl, double &) const
   {
     SaltDEM::Contact c;
     SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],

@@ -5,9 +5,10 @@
    serves every style: each thread runs the style's own pair loop
    (PairSaltdem::loop, the same code as the serial style) over its slice of
    the neighbour list (PairSaltdem::thread_bounds: equal numbers of pairs)
-   into thread-private force/torque arrays, which ThrOMP then reduces; the
-   continuity pass of saltdem/viscous runs threaded as well.  Needs the
-   OPENMP package.
+   into thread-private force/torque arrays, which ThrOMP then reduces (and
+   into the style's thread-private per-atom sums, which its post_loop()
+   adds up: the continuity density of saltdem/viscous).  Needs the OPENMP
+   package.
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -54,7 +55,7 @@ template <class Style> class PairSaltdemOMP : public Style, public ThrOMP {
     const int *bounds = this->thread_bounds(nthreads);
 
 #if defined(_OPENMP)
-#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag, bounds)
+#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag, bounds, nthreads)
 #endif
     {
 #if defined(_OPENMP)
@@ -73,11 +74,13 @@ template <class Style> class PairSaltdemOMP : public Style, public ThrOMP {
                        double dy, double dz) {
         ev_tally_xyz_thr(this, i, j, nlocal, newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz, thr);
       };
-      this->dispatch_loop(this, ifrom, ito, thr->get_f(), thr->get_torque(), tally);
+      this->dispatch_loop(this, ifrom, ito, thr->get_f(), thr->get_torque(),
+                          this->loop_sum(tid, nthreads), tally);
 
       thr->timer(Timer::PAIR);
       reduce_thr(this, eflag, vflag, thr);
     }
+    this->post_loop(nthreads);
   }
 
   double memory_usage() override { return Style::memory_usage() + memory_usage_thr(); }

@@ -2,9 +2,10 @@
    SaltDEM: discrete-element salt tectonics for LAMMPS.
 
    pair saltdem/viscous: the linear Newtonian salt, and the no-slip
-   boundary contact of cover-salt, salt-wall and cover-wall pairs.  The law
-   is SaltDEM::viscous_force (saltdem_contact.h); this file turns the
-   requested viscosity into dashpot coefficients and sets the stable dt.
+   boundary contact of cover-salt, salt-wall and cover-wall pairs.  The laws
+   are SaltDEM::viscous_fluid_force and viscous_contact_force
+   (saltdem_contact.h); this file turns the requested viscosity into dashpot
+   coefficients, carries the fluid's density and sets the stable dt.
 ------------------------------------------------------------------------- */
 
 #include "pair_saltdem_viscous.h"
@@ -215,93 +216,38 @@ void PairSaltdemViscous::init_style()
   PairSaltdem::init_style();
 }
 
-/* rho[i] += m_j q(i, j, p, d, rsq), rho[j] += m_i q(...) over the FLUID pairs of
-   the list closer than 2h (d = x_i - x_j, rsq = |d|^2; q symmetric under
-   i <-> j and zero from 2h on), summed onto the owners with newton on */
+/* the kernel density rho[i] = sum_j m_j W_ij (j = i included) of every owned
+   atom of a type whose own pair is FLUID, over the FLUID pairs of the list
+   (summed onto the owners with newton on): once, for the reference density */
 
-template <class Q> void PairSaltdemViscous::sum_fluid_pairs(Q &&q)
-{
-  if (domain->dimension == 2)
-    sum_fluid_pairs_dim<2>(q);
-  else
-    sum_fluid_pairs_dim<3>(q);
-  if (force->newton_pair) comm->reverse_comm(this);
-}
-
-/* DIM 2: d[2] = 0, not read from the positions (see saltdem_contact.h).
-   Under the OpenMP variant (-sf omp) the pairs are summed by the threads into
-   private arrays (slices of equal work, PairSaltdem::thread_bounds), then
-   added to rho. */
-
-template <int DIM, class Q> void PairSaltdemViscous::sum_fluid_pairs_dim(Q &q)
-{
-  if (!atom->x) return;
-  const int nall = atom->nlocal + atom->nghost;
-  const int nthreads = (suffix_flag & Suffix::OMP) ? comm->nthreads : 1;
-  if (nthreads == 1) {
-    sum_fluid_slice<DIM>(q, 0, list->inum, rho);
-    return;
-  }
-  if ((bigint) nthreads * nall > (bigint) rho_thr.size()) rho_thr.resize((size_t) nthreads * nall);
-  const int *bounds = thread_bounds(nthreads);
-  double *partial = rho_thr.data();
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(nthreads) LMP_DEFAULT_NONE LMP_SHARED(q, bounds, partial, nall, nthreads)
-#endif
-  {
-#if defined(_OPENMP)
-    const int tid = omp_get_thread_num();
-#else
-    const int tid = 0;
-#endif
-    double *mine = partial + (size_t) tid * nall;
-    for (int i = 0; i < nall; i++) mine[i] = 0.0;
-    sum_fluid_slice<DIM>(q, bounds[tid], bounds[tid + 1], mine);
-#if defined(_OPENMP)
-#pragma omp barrier
-#pragma omp for schedule(static)
-#endif
-    for (int i = 0; i < nall; i++) {
-      double add = 0.0;
-      for (int t = 0; t < nthreads; t++) add += partial[(size_t) t * nall + i];
-      rho[i] += add;
-    }
-  }
-}
-
-template <int DIM, class Q>
-void PairSaltdemViscous::sum_fluid_slice(Q &q, int ifrom, int ito, double *out)
+template <int DIM> void PairSaltdemViscous::kernel_density()
 {
   const auto x = (const double (*)[3]) atom->x[0];
   const double *m = atom->rmass;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
-  const int *ilist = list->ilist;
-  const int *numneigh = list->numneigh;
-  int **firstneigh = list->firstneigh;
-  for (int ii = ifrom; ii < ito; ii++) {
-    const int i = ilist[ii];
-    const int *jlist = firstneigh[i];
-    const int jnum = numneigh[i];
+  for (int i = 0; i < nall; i++) {
+    const int t = type[i];
+    rho[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0) : 0.0;
+  }
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *jlist = list->firstneigh[i];
     const SaltDEM::ViscousParams *prow = params[type[i]];
-    const double xi0 = x[i][0], xi1 = x[i][1], xi2 = (DIM == 3) ? x[i][2] : 0.0;
-    const double mi = m[i];
-    for (int jj = 0; jj < jnum; jj++) {
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const SaltDEM::ViscousParams &p = prow[type[j]];
       if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
-      const double d[3] = {xi0 - x[j][0], xi1 - x[j][1], (DIM == 3) ? xi2 - x[j][2] : 0.0};
-      const double rsq = (DIM == 3) ? d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-                                    : d[0] * d[0] + d[1] * d[1];
-      // q vanishes from r = 2h on; the margin keeps every pair whose q the rounding of
-      // sqrt could still make nonzero
-      if (rsq >= 4.000000000004 * p.h * p.h) continue;
-      const double w = q(i, j, p, d, rsq);
-      out[i] += m[j] * w;
-      if (newton_pair || j < nlocal) out[j] += mi * w;
+      double rsq = 0.0;
+      for (int k = 0; k < DIM; k++) rsq += (x[i][k] - x[j][k]) * (x[i][k] - x[j][k]);
+      const double w = SaltDEM::wendland_c2(DIM, p.h, sqrt(rsq));
+      rho[i] += m[j] * w;
+      if (newton_pair || j < nlocal) rho[j] += m[i] * w;
     }
   }
+  if (newton_pair) comm->reverse_comm(this);
 }
 
 /* FLUID density, volume and pressure.  The density of a fluid particle is
@@ -309,12 +255,14 @@ void PairSaltdemViscous::sum_fluid_slice(Q &q, int ifrom, int ito, double *out)
    restarts with the atom) and follows the continuity equation
      d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
    over the FLUID pairs (walls and cover included: moving boundaries compress
-   the fluid).  It starts at the reference rho0 of its type, the mean kernel
-   density sum_j m_j W_ij of that type at the first step, so the fluid starts
-   free of pressure.  A summed kernel density would instead drift upwards as
-   particles pair up (the mean of sum_j W grows while the volume does not).
-   Then the volume m / rho, the pressure P = K (rho / rho0 - 1) and
-   a = m P / rho^2, sent to the ghosts. */
+   the fluid), summed in the force pass and applied after it (post_loop), as
+   LAMMPS's SPH styles do: the pressure of a step is that of the density at
+   the end of the step before.  It starts at the reference rho0 of its type,
+   the mean kernel density sum_j m_j W_ij of that type at the first step, so
+   the fluid starts free of pressure.  A summed kernel density would instead
+   drift upwards as particles pair up (the mean of sum_j W grows while the
+   volume does not).  Here, before the force pass: the volume m / rho, the
+   pressure P = K (rho / rho0 - 1) and a = m P / rho^2, sent to the ghosts. */
 
 void PairSaltdemViscous::pre_loop()
 {
@@ -330,7 +278,6 @@ void PairSaltdemViscous::pre_loop()
     memory->create(apress, nmax, "pair:apress");
     memory->create(rho, nmax, "pair:rho");
   }
-  double **v = atom->v;
   double *m = atom->rmass;
   int *type = atom->type;
   double *rhoc = atom->dvector[index_rho];
@@ -342,13 +289,10 @@ void PairSaltdemViscous::pre_loop()
   for (int t = 1; t <= nt; t++)
     if (fluidself[t] && params[t][t].rho0 <= 0.0) need = true;
   if (need) {
-    for (int i = 0; i < nall; i++) {
-      const int t = type[i];
-      rho[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(dim, params[t][t].h, 0.0) : 0.0;
-    }
-    sum_fluid_pairs([&](int, int, const SaltDEM::ViscousParams &p, const double *, double rsq) {
-      return SaltDEM::wendland_c2(dim, p.h, sqrt(rsq));
-    });
+    if (dim == 2)
+      kernel_density<2>();
+    else
+      kernel_density<3>();
     // per type: kernel density sum and count, and the continuity densities that atoms
     // already carry (from an earlier run or a restart file) with their count
     std::vector<double> sum(4 * (nt + 1), 0.0), all(4 * (nt + 1));
@@ -384,22 +328,10 @@ void PairSaltdemViscous::pre_loop()
   for (int i = 0; i < nlocal; i++)
     if (fluidself[type[i]] && rhoc[i] <= 0.0) rhoc[i] = params[type[i]][type[i]].rho0;
 
-  // continuity (not during setup, like the history of the contact styles)
-  if (!update->setupflag) {
-    for (int i = 0; i < nall; i++) rho[i] = 0.0;
-    const auto vv = (const double (*)[3])(v ? v[0] : nullptr);    // rows of 3
-    sum_fluid_pairs([&](int i, int j, const SaltDEM::ViscousParams &p, const double *d, double rsq) {
-      const double s = 1.0 - 0.5 * sqrt(rsq) / p.h;
-      if (s <= 0.0) return 0.0;
-      // v_ij . grad_i W_ij, with grad_i W = -cw (1 - r/2h)^3 (x_i - x_j)
-      double vd = (vv[i][0] - vv[j][0]) * d[0] + (vv[i][1] - vv[j][1]) * d[1];
-      if (!dim2) vd += (vv[i][2] - vv[j][2]) * d[2];
-      return -p.cw * s * s * s * vd;
-    });
-    const double dt = update->dt;
-    for (int i = 0; i < nlocal; i++)
-      if (fluidself[type[i]]) rhoc[i] += dt * rho[i];
-  }
+  // -sf omp: one slice of d rho / dt per thread (post_loop adds them up)
+  const int nthreads = (suffix_flag & Suffix::OMP) ? comm->nthreads : 1;
+  if (nthreads > 1 && (bigint) nthreads * nmax > (bigint) rho_thr.size())
+    rho_thr.resize((size_t) nthreads * nmax);
 
   // a boundary particle (wall, cover) gets the volume it would have at the
   // fluid's reference density
@@ -413,6 +345,45 @@ void PairSaltdemViscous::pre_loop()
     apress[i] = (isfluid[type[i]] && p.rho0 > 0.0) ? m[i] * p.K * (r / p.rho0 - 1.0) / (r * r) : 0.0;
   }
   comm->forward_comm(this);
+}
+
+/* the array the force pass sums d rho / dt into: rho, or thread tid's slice
+   (zeroed here, by the thread that fills it) */
+
+double *PairSaltdemViscous::loop_sum(int tid, int nthreads)
+{
+  if (!any_fluid) return nullptr;
+  const int nall = atom->nlocal + atom->nghost;
+  double *out = (nthreads > 1) ? rho_thr.data() + (size_t) tid * nmax : rho;
+  for (int i = 0; i < nall; i++) out[i] = 0.0;
+  return out;
+}
+
+/* continuity: rho += dt * d rho / dt for the owned fluid particles (not
+   during setup, like the history of the contact styles) */
+
+void PairSaltdemViscous::post_loop(int nthreads)
+{
+  if (!any_fluid || update->setupflag) return;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  if (nthreads > 1) {
+    const double *part = rho_thr.data();
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(nthreads) schedule(static) LMP_DEFAULT_NONE LMP_SHARED(part, nall, nthreads)
+#endif
+    for (int i = 0; i < nall; i++) {
+      double add = 0.0;
+      for (int t = 0; t < nthreads; t++) add += part[(size_t) t * nmax + i];
+      rho[i] = add;
+    }
+  }
+  if (force->newton_pair) comm->reverse_comm(this);
+  const int *type = atom->type;
+  double *rhoc = atom->dvector[index_rho];
+  const double dt = update->dt;
+  for (int i = 0; i < nlocal; i++)
+    if (fluidself[type[i]]) rhoc[i] += dt * rho[i];
 }
 
 int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -459,6 +430,7 @@ double PairSaltdemViscous::init_one(int i, int j)
   const double cut = PairSaltdem::init_one(i, j);
   auto &p = params[i][j];
   p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
+  p.ih2 = (p.h > 0.0) ? 0.5 / p.h : 0.0;
   p.kfac = 2.0 * correction * p.eta * p.cw;
   p.gn = calibration * p.eta;
   p.gt = p.ratio * p.gn;

@@ -36,17 +36,23 @@ class PairSaltdemViscous : public PairSaltdem {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
+  double *loop_sum(int tid, int nthreads) override;
+  void post_loop(int nthreads) override;
+
   // the force law, inlined into the shared pair loop (PairSaltdem::loop): FLUID pairs need
-  // only positions and velocities of the centres and make no torque
+  // only positions and velocities of the centres and make no torque.  q: the pair's term
+  // v_ij . grad_i W_ij of the continuity equation, summed in the same pass (post_loop)
+  static constexpr bool PAIR_SUM = true;
   template <int DIM, int EVFLAG>
   int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *, bool,
-          double *f, double *ti, double *tj, double &evdwl) const
+          double *f, double *ti, double *tj, double &evdwl, double &q) const
   {
     const SaltDEM::ViscousParams &p = params[itype][jtype];
-    SaltDEM::Contact c;
     if (p.mode == SaltDEM::VISCOUS_FLUID) {
-      SaltDEM::fluid_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.radius[i], a.radius[j], r,
-                                     c);
+      const double d[3] = {a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1],
+                           (DIM == 3) ? a.x[i][2] - a.x[j][2] : 0.0};
+      const double vr[3] = {a.v[i][0] - a.v[j][0], a.v[i][1] - a.v[j][1],
+                            (DIM == 3) ? a.v[i][2] - a.v[j][2] : 0.0};
       // SPH pressure m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) with a_i = m_i P_i / rho_i^2;
       // a particle that is not fluid (wall, cover) mirrors the fluid's pressure
       const double *m = a.rmass;
@@ -57,10 +63,12 @@ class PairSaltdemViscous : public PairSaltdem {
         pc = 2.0 * m[j] * apress[i];
       else if (isfluid[jtype])
         pc = 2.0 * m[i] * apress[j];
-      return SaltDEM::viscous_fluid_force<DIM, EVFLAG>(p, c, vol[i], vol[j], pc, f, evdwl)
+      return SaltDEM::viscous_fluid_force<DIM, EVFLAG>(p, d, vr, r, a.radius[i] + a.radius[j],
+                                                       vol[i], vol[j], pc, f, evdwl, q)
           ? LAW_TOUCH
           : 0;
     }
+    SaltDEM::Contact c;
     SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],
                                      a.radius[i], a.radius[j], a.rmass[i], a.rmass[j], r, c,
                                      false);
@@ -79,7 +87,7 @@ class PairSaltdemViscous : public PairSaltdem {
   double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
   double *vol;        // FLUID: particle volume m / rho, owned and ghost atoms
   double *apress;     // FLUID: m P / rho^2 per atom (pressure term), owned and ghost atoms
-  double *rho;        // FLUID: work array (kernel density, then d rho / dt), owned and ghost atoms
+  double *rho;        // FLUID: work array (kernel density, or d rho / dt), owned and ghost atoms
   int index_rho;      // FLUID: per-atom continuity density (fix property/atom d_saltdem_rho)
   int *fluidself;     // per type: its own pair is FLUID (continuity density, reference density)
   int *isfluid;       // per type: FLUID with K > 0 (carries pressure)
@@ -94,10 +102,8 @@ class PairSaltdemViscous : public PairSaltdem {
   // stores no coefficients, only sub-style settings): kept by the pair_coeff given again
   std::vector<double> rho0_restart, h_restart;
 
-  template <class Q> void sum_fluid_pairs(Q &&q);
-  template <int DIM, class Q> void sum_fluid_pairs_dim(Q &q);
-  template <int DIM, class Q> void sum_fluid_slice(Q &q, int ifrom, int ito, double *out);
-  std::vector<double> rho_thr;    // -sf omp: per-thread partial sums of sum_fluid_pairs
+  template <int DIM> void kernel_density();
+  std::vector<double> rho_thr;    // -sf omp: per-thread partial sums of d rho / dt
   void allocate_params(int) override;
   void *pair_params(int i, int j) override { return &params[i][j]; }
   size_t params_size() const override { return sizeof(SaltDEM::ViscousParams); }

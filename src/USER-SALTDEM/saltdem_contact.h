@@ -4,8 +4,9 @@
    The contact math of the package, written once.  Every pair style, its
    OpenMP variant and any wall interaction call these inline functions:
    the geometry and kinematics of a disc/sphere contact (Contact), the
-   frictional-cohesive cover law (cohesive_force) and the viscous salt law
-   (viscous_force).  Nothing here depends on LAMMPS classes.
+   frictional-cohesive cover law (cohesive_force) and the viscous salt laws
+   (viscous_fluid_force, viscous_contact_force).  Nothing here depends on
+   LAMMPS classes.
 
    Sign conventions: n points from j to i; the force returned acts on i
    (j receives its negative); torques are returned separately for i and j
@@ -91,39 +92,17 @@ inline void contact_kinematics(const double *xi, const double *xj, const double 
   if (want_reff) c.reff = radi * radj / (radi + radj);
 }
 
-/* What the fluid law of saltdem/viscous reads: n, r, delta and the relative
-   velocity of the centres (the same values as contact_kinematics). */
-template <int DIM = 3>
-inline void fluid_kinematics(const double *xi, const double *xj, const double *vi,
-                             const double *vj, double radi, double radj, double r, Contact &c)
-{
-  const double rinv = 1.0 / r;
-  c.n[0] = (xi[0] - xj[0]) * rinv;
-  c.n[1] = (xi[1] - xj[1]) * rinv;
-  c.n[2] = (DIM == 3) ? (xi[2] - xj[2]) * rinv : 0.0;
-  c.r = r;
-  c.delta = radi + radj - r;
-  c.vr[0] = vi[0] - vj[0];
-  c.vr[1] = vi[1] - vj[1];
-  c.vr[2] = (DIM == 3) ? vi[2] - vj[2] : 0.0;
-}
-
 /* Keep a history vector in the tangent plane as the contact rotates, with
    its length unchanged (frame-indifferent spring). */
 template <int DIM = 3> inline void rotate_into_plane(double *h, const double *n)
 {
-  if (DIM == 2) {    // h[2] stays 0
+  if (DIM == 2) {    // h[2] stays 0; the tangent line is t = (-n1, n0): h = +-|h| t
     const double hn = h[0] * n[0] + h[1] * n[1];
     if (hn == 0.0) return;
-    const double before = h[0] * h[0] + h[1] * h[1];
-    h[0] -= hn * n[0];
-    h[1] -= hn * n[1];
-    const double after = h[0] * h[0] + h[1] * h[1];
-    if (after > 0.0) {
-      const double s = std::sqrt(before / after);
-      h[0] *= s;
-      h[1] *= s;
-    }
+    const double ht = n[0] * h[1] - n[1] * h[0];
+    const double len = (ht == 0.0) ? 0.0 : std::copysign(std::sqrt(ht * ht + hn * hn), ht);
+    h[0] = -len * n[1];
+    h[1] = len * n[0];
     return;
   }
   const double hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
@@ -179,7 +158,15 @@ struct CohesiveParams {
   double zeta_t;    // tangential damping ratio
   double kr;        // rolling stiffness (force/length on the rolling displacement); 0: none
   double mur;       // rolling friction coefficient: |fr| <= mur * Fn
+  double cn, ct;    // derived (cohesive_derive): damping per sqrt(reduced mass), 2 zeta sqrt(k)
 };
+
+/* the derived members of p, from the others */
+inline void cohesive_derive(CohesiveParams &p)
+{
+  p.cn = 2.0 * p.zeta_n * std::sqrt(p.kn);
+  p.ct = 2.0 * p.zeta_t * std::sqrt(p.kt);
+}
 
 /* Elastic + cohesive normal force (positive = repulsive) at overlap delta.
    Touching: kn*delta.  In a gap g = -delta the attraction rises elastically
@@ -222,7 +209,8 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
 {
   // normal: elastic/cohesive + viscous damping (critical ratio zeta_n)
   const double fn_el = cohesive_normal(p, c.delta);
-  const double fn = fn_el - 2.0 * p.zeta_n * std::sqrt(c.meff * p.kn) * c.vn;
+  const double sqm = std::sqrt(c.meff);
+  const double fn = fn_el - p.cn * sqm * c.vn;
   if (EVFLAG) evdwl = cohesive_normal_energy(p, c.delta);
   for (int k = 0; k < DIM; k++) f[k] = fn * c.n[k];
   if (c.delta <= 0.0) return false;
@@ -233,15 +221,17 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
   rotate_into_plane<DIM>(xi, c.n);
   if (advance)    // the spring first follows this step's sliding, as in gran/hooke/history
     for (int k = 0; k < DIM; k++) xi[k] += c.vt[k] * dt;
-  const double gt = 2.0 * p.zeta_t * std::sqrt(c.meff * p.kt);
+  const double gt = p.ct * sqm;
   double ft[3];
   for (int k = 0; k < DIM; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
   if (DIM == 2) ft[2] = 0.0;
+  // (fmax >= 0: cohesion >= 0 and a compressive elastic force; compared squared, the
+  // square root only for a sliding contact)
   const double fmax = p.coh + p.mu * fn_el;
-  const double ftmag = (DIM == 3) ? std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2])
-                                  : std::sqrt(ft[0] * ft[0] + ft[1] * ft[1]);
-  if (ftmag > fmax) {
-    const double s = fmax / ftmag;
+  const double ft2 = (DIM == 3) ? ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]
+                                : ft[0] * ft[0] + ft[1] * ft[1];
+  if (ft2 > fmax * fmax) {
+    const double s = fmax / std::sqrt(ft2);
     for (int k = 0; k < DIM; k++) {
       ft[k] *= s;
       if (p.kt > 0.0) xi[k] = -(ft[k] + gt * c.vt[k]) / p.kt;
@@ -274,10 +264,10 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
     for (int k = 0; k < DIM; k++) fr[k] = -p.kr * psi[k];
     if (DIM == 2) fr[2] = 0.0;
     const double frmax = p.mur * fn_el;
-    const double frmag = (DIM == 3) ? std::sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2])
-                                    : std::sqrt(fr[0] * fr[0] + fr[1] * fr[1]);
-    if (frmag > frmax) {
-      const double s = frmax / frmag;
+    const double fr2 = (DIM == 3) ? fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]
+                                  : fr[0] * fr[0] + fr[1] * fr[1];
+    if (fr2 > frmax * frmax) {
+      const double s = frmax / std::sqrt(fr2);
       for (int k = 0; k < DIM; k++) {
         fr[k] *= s;
         psi[k] = -fr[k] / p.kr;
@@ -330,6 +320,7 @@ struct ViscousParams {
   double K;         // FLUID: bulk modulus of the equation of state P = K (rho/rho0 - 1)
   double rho0;      // FLUID (I,I only): reference kernel density, taken at the first step
   double cw;        // FLUID: |dW/dr| / r = cw (1 - r/2h)^3 (derived)
+  double ih2;       // FLUID: 1 / 2h (derived)
   double kfac;      // FLUID: 2 eta * kernel constant (derived: dimension, h)
   double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
   double ratio;     // CONTACT: tangential / normal dashpot coefficient
@@ -356,22 +347,33 @@ inline double wendland_c2_grad_over_r(int dimension, double h)
 }
 
 /* FLUID: the Morris viscosity and the SPH pressure between particles of
-   volumes voli, volj (m/rho); pc: the SPH pressure pair coefficient
-   m_i m_j (P_i/rho_i^2 + P_j/rho_j^2).  Reads c.n, c.r, c.delta and c.vr
-   only (fluid_kinematics); no torque.  Returns true while the discs touch. */
+   volumes voli, volj (m/rho) at d = x_i - x_j, r = |d|, relative velocity
+   vr = v_i - v_j, radii summing to radsum; pc: the SPH pressure pair
+   coefficient m_i m_j (P_i/rho_i^2 + P_j/rho_j^2).  No torque.  divw:
+   v_ij . grad_i W_ij, the pair's term of the continuity equation
+   d rho_i/dt = sum_j m_j v_ij . grad_i W_ij.  Written on d rather than the
+   unit normal: no division unless an elastic core acts.  Returns true while
+   the discs touch. */
 template <int DIM = 3, int EVFLAG = 1>
-inline bool viscous_fluid_force(const ViscousParams &p, const Contact &c, double voli,
-                                double volj, double pc, double *f, double &evdwl)
+inline bool viscous_fluid_force(const ViscousParams &p, const double *d, const double *vr,
+                                double r, double radsum, double voli, double volj, double pc,
+                                double *f, double &evdwl, double &divw)
 {
-  const bool touching = c.delta > 0.0;
-  const double fel = touching ? p.kn * c.delta : 0.0;
-  if (EVFLAG) evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
-  const double s = 1.0 - 0.5 * c.r / p.h;
+  const double delta = radsum - r;
+  const bool touching = delta > 0.0;
+  if (EVFLAG) evdwl = touching ? 0.5 * p.kn * delta * delta : 0.0;
+  const double s = 1.0 - r * p.ih2;
   const double s3 = (s > 0.0) ? s * s * s : 0.0;
   const double g = p.kfac * voli * volj * s3;    // Morris viscosity
-  // pressure: -pc grad W, repulsive for P > 0
-  const double fn = pc * p.cw * s3 * c.r + fel;
-  for (int k = 0; k < DIM; k++) f[k] = fn * c.n[k] - g * c.vr[k];
+  // grad_i W = -cw s^3 d; pressure -pc grad_i W, repulsive for P > 0; the core kn delta d/r
+  const double cws3 = p.cw * s3;
+  const double a = pc * cws3 + ((touching && p.kn > 0.0) ? p.kn * delta / r : 0.0);
+  double vd = 0.0;
+  for (int k = 0; k < DIM; k++) {
+    f[k] = a * d[k] - g * vr[k];
+    vd += vr[k] * d[k];
+  }
+  divw = -cws3 * vd;
   return touching;
 }
 
@@ -392,19 +394,6 @@ inline bool viscous_contact_force(const ViscousParams &p, const Contact &c, doub
   }
   contact_torques<DIM>(c, ft, ti, tj);
   return touching;
-}
-
-/* Either form, by p.mode (c from contact_kinematics). */
-template <int DIM = 3, int EVFLAG = 1>
-inline bool viscous_force(const ViscousParams &p, const Contact &c, double voli, double volj,
-                          double pc, double *f, double *ti, double *tj, double &evdwl)
-{
-  if (p.mode == VISCOUS_FLUID) {
-    ti[0] = ti[1] = ti[2] = tj[0] = tj[1] = tj[2] = 0.0;
-    if (DIM == 2) f[2] = 0.0;
-    return viscous_fluid_force<DIM, EVFLAG>(p, c, voli, volj, pc, f, evdwl);
-  }
-  return viscous_contact_force<DIM, EVFLAG>(p, c, f, ti, tj, evdwl);
 }
 
 }    // namespace SaltDEM

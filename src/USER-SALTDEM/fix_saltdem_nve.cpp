@@ -92,46 +92,49 @@ void FixSaltdemNVE::reset_dt()
   dtf = 0.5 * update->dt * force->ftm2v;
 }
 
-/* half-kick of v and omega of atom i (forces and torques over S m and S I) */
+/* velocity-Verlet: half-kick of v and omega (forces and torques over S m
+   and S I), then (initial) the drift of x.  DIM 2: only x, y and the spin
+   about z move, so the z parts stay at the zero LAMMPS creates 2D atoms with
+   (what fix enforce2d would enforce for these atoms, at no extra pass). */
 
-inline void FixSaltdemNVE::kick(int i, double dtfs, double dtir)
+template <int DIM, bool DRIFT> void FixSaltdemNVE::integrate()
 {
-  double **v = atom->v, **f = atom->f;
+  double **x = atom->x, **v = atom->v, **f = atom->f;
   double **omega = atom->omega, **torque = atom->torque;
-  const double dtfm = dtfs / atom->rmass[i];
-  v[i][0] += dtfm * f[i][0];
-  v[i][1] += dtfm * f[i][1];
-  v[i][2] += dtfm * f[i][2];
-  const double dtirotate = dtir / (atom->rmass[i] * atom->radius[i] * atom->radius[i]);
-  omega[i][0] += dtirotate * torque[i][0];
-  omega[i][1] += dtirotate * torque[i][1];
-  omega[i][2] += dtirotate * torque[i][2];
+  const double *rmass = atom->rmass, *radius = atom->radius;
+  const int *mask = atom->mask;
+  const double dtfs = dtf / inertia;
+  const double dtir = dtfs / inertia_factor;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double dtfm = dtfs / rmass[i];
+    const double dtirotate = dtir / (rmass[i] * radius[i] * radius[i]);
+    for (int k = 0; k < DIM; k++) v[i][k] += dtfm * f[i][k];
+    if (DIM == 3) {
+      omega[i][0] += dtirotate * torque[i][0];
+      omega[i][1] += dtirotate * torque[i][1];
+    }
+    omega[i][2] += dtirotate * torque[i][2];
+    if (DRIFT)
+      for (int k = 0; k < DIM; k++) x[i][k] += dtv * v[i][k];
+  }
 }
-
-/* half-kick, then drift of x */
 
 void FixSaltdemNVE::initial_integrate(int)
 {
-  double **x = atom->x, **v = atom->v;
-  int *mask = atom->mask;
-  const double dtfs = dtf / inertia;
-  const double dtir = dtfs / inertia_factor;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    kick(i, dtfs, dtir);
-    x[i][0] += dtv * v[i][0];
-    x[i][1] += dtv * v[i][1];
-    x[i][2] += dtv * v[i][2];
-  }
+  if (domain->dimension == 2)
+    integrate<2, true>();
+  else
+    integrate<3, true>();
 }
 
 void FixSaltdemNVE::final_integrate()
 {
-  int *mask = atom->mask;
-  const double dtfs = dtf / inertia;
-  const double dtir = dtfs / inertia_factor;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit) kick(i, dtfs, dtir);
+  if (domain->dimension == 2)
+    integrate<2, false>();
+  else
+    integrate<3, false>();
   if (check_every && update->ntimestep % check_every == 0) check_finite();
 }
 

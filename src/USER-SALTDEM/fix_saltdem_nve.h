@@ -30,7 +30,7 @@ class FixSaltdemNVE : public Fix {
   int check_every;      // steps between finite-value checks (0: never)
   double dtv, dtf, inertia_factor;    // moment of inertia = inertia_factor * m r^2
   void check_finite();
-  void kick(int i, double dtfs, double dtir);
+  template <int DIM, bool DRIFT> void integrate();
 };
 
 }    // namespace LAMMPS_NS

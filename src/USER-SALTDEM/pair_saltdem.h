@@ -63,7 +63,8 @@ class PairSaltdem : public Pair {
   //     int jtype, double r, double *hist, bool advance, double *f, double *ti,
   //     double *tj, double &evdwl, double &q)
   // computes the kinematics it needs, fills the force on i (and torques on i
-  // and j if it returns LAW_TORQUE) and returns LAW_* flags.  A law with a
+  // and j if it returns LAW_TORQUE) and returns LAW_* flags (Derived::HISTORY:
+  // whether hist is used, a compile-time constant).  A law with a
   // per-atom pair sum (Derived::PAIR_SUM, e.g. the continuity density of the
   // fluid) sets q, symmetric under i <-> j: sum[i] += m_j q, sum[j] += m_i q
   // (sum: loop_sum(), so the sum costs no second pass).  tally() receives
@@ -154,13 +155,15 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
   const bool advance = (update->setupflag == 0);    // history is not advanced in setup
-  const int nhist = size_history;
+  // a law without history (Derived::HISTORY false) compiles without the history bookkeeping
+  constexpr bool HIST = Derived::HISTORY;
+  const int nhist = HIST ? size_history : 0;
 
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  int **firsttouch = nhist ? fix_history->firstflag : nullptr;
-  double **firsthist = nhist ? fix_history->firstvalue : nullptr;
+  int **firsttouch = (HIST && nhist) ? fix_history->firstflag : nullptr;
+  double **firsthist = (HIST && nhist) ? fix_history->firstvalue : nullptr;
 
   double fij[3], ti[3], tj[3];
 
@@ -173,8 +176,8 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
     const double *reach_i = reach_abs[itype];
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
-    int *touch = nhist ? firsttouch[i] : nullptr;
-    double *allhist = nhist ? firsthist[i] : nullptr;
+    int *touch = (HIST && nhist) ? firsttouch[i] : nullptr;
+    double *allhist = (HIST && nhist) ? firsthist[i] : nullptr;
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
@@ -185,12 +188,12 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
       const double rsq = (DIM == 3) ? delx * delx + dely * dely + delz * delz
                                     : delx * delx + dely * dely;
       const double reach = MAX(radi + radius[j] + extra_i[jtype], reach_i[jtype]);
-      double *hist = nhist ? &allhist[nhist * jj] : nullptr;
+      double *hist = (HIST && nhist) ? &allhist[nhist * jj] : nullptr;
 
       // out of reach: a pair that is not flagged touching has a zero history
       // already (FixNeighHistory zeroes new pairs, this loop ended ones)
       if (rsq >= reach * reach || rsq == 0.0) {
-        if (nhist && touch[jj]) {
+        if (HIST && nhist && touch[jj]) {
           touch[jj] = 0;
           for (int k = 0; k < nhist; k++) hist[k] = 0.0;
         }
@@ -203,7 +206,7 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
         sum[i] += rmass[j] * q;
         if (newton_pair || j < nlocal) sum[j] += rmass[i] * q;
       }
-      if (nhist) {
+      if (HIST && nhist) {
         if (flags & LAW_TOUCH)
           touch[jj] = 1;
         else if (touch[jj]) {

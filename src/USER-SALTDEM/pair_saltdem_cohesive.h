@@ -28,6 +28,7 @@ class PairSaltdemCohesive : public PairSaltdem {
   void *extract(const char *, int &) override;
 
   // the force law, inlined into the shared pair loop (PairSaltdem::loop); no per-atom sum
+  static constexpr bool HISTORY = true;    // the law keeps values per touching pair
   static constexpr bool PAIR_SUM = false;
   template <int DIM, int EVFLAG>
   int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *hist,

@@ -42,6 +42,7 @@ class PairSaltdemViscous : public PairSaltdem {
   // the force law, inlined into the shared pair loop (PairSaltdem::loop): FLUID pairs need
   // only positions and velocities of the centres and make no torque.  q: the pair's term
   // v_ij . grad_i W_ij of the continuity equation, summed in the same pass (post_loop)
+  static constexpr bool HISTORY = false;    // no values kept per pair
   static constexpr bool PAIR_SUM = true;
   template <int DIM, int EVFLAG>
   int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *, bool,

@@ -121,7 +121,7 @@ class Scene:
                  dip=self.dip, target=self.target, hang=f"{self.hang_ids[0]}:{self.hang_ids[1]}",
                  # cohesion, tensile force and range scale with the disc radius (params.in)
                  coh_cover=2e8 * rmin / 6.25, ten_cover=1e8 * rmin / 6.25,
-                 rng_cover=0.05 * rmin / 6.25, kn_salt=0, check=10)
+                 rng_cover=0.05 * rmin / 6.25, kn_salt=0, check=10, newton="on")
         # SPH smoothing: 1.3 disc spacings (laws.in), from the mean squared radius
         r2 = (rmin ** 2 + rmin * rmax + rmax ** 2) / 3.0
         v["h_salt"] = 1.3 * math.sqrt(math.pi * r2 / 0.85)

@@ -743,13 +743,15 @@ def par_serial(scenes, tmp_path_factory):
     return s, data, r, read_dump(d / "final.dump")
 
 
-@pytest.mark.parametrize("mode", ["np2", "omp2", "np2xomp2"])
+@pytest.mark.parametrize("mode", ["np2", "np2-newton-off", "omp2", "np2xomp2"])
 def test_parallel_scene_agrees(par_serial, tmp_path, mode):
-    """The faulting scene (hybrid cover/salt, 3,000 steps): 2 MPI ranks, 2 OpenMP threads
-    (-sf omp) and both give the serial positions within 1e-8 of the box width and the serial
-    kinetic and potential energy within 1e-6 (only summation orders differ)."""
+    """The faulting scene (hybrid cover/salt, 3,000 steps): 2 MPI ranks (newton on, as the
+    scenes run, or off), 2 OpenMP threads (-sf omp) and both give the serial positions within
+    1e-8 of the box width and the serial kinetic and potential energy within 1e-6 (only
+    summation orders differ)."""
     s, data, r1, a = par_serial
-    kw = {"np2": dict(np=2), "omp2": dict(omp=2), "np2xomp2": dict(np=2, omp=2)}[mode]
+    kw = {"np2": dict(np=2), "np2-newton-off": dict(np=2, newton="off"), "omp2": dict(omp=2),
+          "np2xomp2": dict(np=2, omp=2)}[mode]
     r = run_scene(tmp_path, s, data, PAR, rate=2.0, **kw)
     check_ok(r)
     if "omp" in mode:    # hybrid sub-styles keep their names; their lists are the /omp ones

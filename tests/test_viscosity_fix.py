@@ -109,6 +109,30 @@ def test_errors(lmp, args, words):
     assert_error(r, "saltdem/viscosity", *words)
 
 
+def test_sets_every_viscous_substyle(lmp):
+    """pair_style hybrid with two saltdem/viscous sub-styles (two salts): the fix sets the
+    viscosity of both; each sub-style's stable time step (bound by the viscosity here) then
+    names the new value, and without the fix neither does."""
+    deck = BASE.replace("create_box 1 box", "create_box 2 box").replace(
+        "set type 1 diameter 20",
+        "set group all type/fraction 2 0.5 7\nset group all diameter 20").replace(
+        "set type 1 density/disc 2200", "set group all density/disc 2200").replace(
+        "pair_style saltdem/viscous\npair_coeff * * 1.0 0 fluid 28 1e8",
+        "pair_style hybrid saltdem/viscous saltdem/viscous\n"
+        "pair_coeff 1 1 saltdem/viscous 1 1.0 0 fluid 28 1e8\n"
+        "pair_coeff 1 2 saltdem/viscous 1 1.0 0 fluid 28 1e8\n"
+        "pair_coeff 2 2 saltdem/viscous 2 1.0 0 fluid 28 1e8")
+    assert deck.count("saltdem/viscous 2 1.0") == 1
+    r = lmp(deck + FIX + "\nrun 0\n", dt=1e-6)
+    check_ok(r)
+    assert "(set on 3 type pairs)" in r.out
+    checks = [l for l in r.out.splitlines() if l.startswith("Pair style saltdem/viscous: timestep")]
+    assert len(checks) == 2 and all("eta = 5e+08" in l for l in checks), checks
+    r0 = lmp(deck + "\nrun 0\n", dt=1e-6)
+    check_ok(r0)
+    assert "eta = 5e+08" not in r0.out
+
+
 def test_needs_the_viscous_pair(lmp):
     deck = BASE.replace("pair_style saltdem/viscous\npair_coeff * * 1.0 0 fluid 28 1e8",
                         "pair_style saltdem/cohesive\npair_coeff * * 1e9 0 0.5 0 0 0")

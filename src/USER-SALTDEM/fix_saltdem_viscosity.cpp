@@ -16,6 +16,9 @@
 #include "error.h"
 #include "force.h"
 #include "pair.h"
+
+#include <algorithm>
+#include <vector>
 #include "update.h"
 
 #include <cstring>
@@ -73,22 +76,32 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   else eta_natural = eta_model * lambda;
 
   // set the viscosity of the salt's pair style now, so that the next run
-  // (and its stable time step check) uses it
-  Pair *pair = force->pair_match("saltdem/viscous", 0);
-  int dim = 0;
-  auto eta = pair ? (double **) pair->extract("eta", dim) : nullptr;
-  if (!eta || dim != 2)
+  // (and its stable time step check) uses it: every saltdem/viscous sub-style of a hybrid
+  // (pair_match returns the n-th of them, and the only one again past the last)
+  std::vector<Pair *> salts;
+  for (int n = 1; n <= 64; n++) {
+    Pair *p = force->pair_match("saltdem/viscous", 0, n);
+    if (!p || std::find(salts.begin(), salts.end(), p) != salts.end()) break;
+    salts.push_back(p);
+  }
+  if (salts.empty())
     error->all(FLERR, "Fix saltdem/viscosity needs pair style saltdem/viscous (alone or in "
                "pair_style hybrid) with its coefficients set before the fix is defined");
   int count = 0;
-  for (int i = 1; i <= atom->ntypes; i++)
-    for (int j = i; j <= atom->ntypes; j++)
-      if (pair->setflag && pair->setflag[i][j]) {
-        eta[i][j] = eta[j][i] = eta_model;
-        count++;
-      }
+  for (Pair *pair : salts) {
+    int dim = 0;
+    auto eta = (double **) pair->extract("eta", dim);
+    if (!eta || dim != 2) continue;    // coefficients not allocated yet
+    for (int i = 1; i <= atom->ntypes; i++)
+      for (int j = i; j <= atom->ntypes; j++)
+        if (pair->setflag && pair->setflag[i][j]) {
+          eta[i][j] = eta[j][i] = eta_model;
+          count++;
+        }
+  }
   if (count == 0)
-    error->all(FLERR, "Fix saltdem/viscosity: pair style saltdem/viscous has no coefficients set");
+    error->all(FLERR, "Fix saltdem/viscosity: pair style saltdem/viscous has no coefficients set; "
+               "give its pair_coeff commands before the fix");
 
   t0 = model_time();
   vector_flag = 1;

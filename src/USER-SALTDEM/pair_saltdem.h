@@ -178,6 +178,10 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
     const int jnum = numneigh[i];
     int *touch = (HIST && nhist) ? firsttouch[i] : nullptr;
     double *allhist = (HIST && nhist) ? firsthist[i] : nullptr;
+    const double mi = rmass[i];
+    // what i receives is summed here and added once after its neighbours: in memory, each
+    // pair would wait for the previous pair's store to f[i]
+    double fi0 = 0.0, fi1 = 0.0, fi2 = 0.0, ti0 = 0.0, ti1 = 0.0, ti2 = 0.0, sumi = 0.0;
 
     for (int jj = 0; jj < jnum; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
@@ -203,8 +207,8 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
       const int flags = self->template law<DIM, EVFLAG>(a, i, j, itype, jtype, std::sqrt(rsq),
                                                         hist, advance, fij, ti, tj, evdwl, q);
       if (Derived::PAIR_SUM) {
-        sum[i] += rmass[j] * q;
-        if (newton_pair || j < nlocal) sum[j] += rmass[i] * q;
+        sumi += rmass[j] * q;
+        if (newton_pair || j < nlocal) sum[j] += mi * q;
       }
       if (HIST && nhist) {
         if (flags & LAW_TOUCH)
@@ -215,15 +219,15 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
         }
       }
 
-      f[i][0] += fij[0];
-      f[i][1] += fij[1];
-      if (DIM == 3) f[i][2] += fij[2];
+      fi0 += fij[0];
+      fi1 += fij[1];
+      if (DIM == 3) fi2 += fij[2];
       if (flags & LAW_TORQUE) {
         if (DIM == 3) {
-          torque[i][0] += ti[0];
-          torque[i][1] += ti[1];
+          ti0 += ti[0];
+          ti1 += ti[1];
         }
-        torque[i][2] += ti[2];
+        ti2 += ti[2];
       }
       if (newton_pair || j < nlocal) {
         f[j][0] -= fij[0];
@@ -239,6 +243,15 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
       }
       if (EVFLAG) tally(i, j, evdwl, fij[0], fij[1], (DIM == 3) ? fij[2] : 0.0, delx, dely, delz);
     }
+    f[i][0] += fi0;
+    f[i][1] += fi1;
+    if (DIM == 3) {
+      f[i][2] += fi2;
+      torque[i][0] += ti0;
+      torque[i][1] += ti1;
+    }
+    torque[i][2] += ti2;
+    if (Derived::PAIR_SUM) sum[i] += sumi;
   }
 }
 

@@ -46,6 +46,25 @@ write_data settled.data
 """
 
 
+def settled_scenes(kinds, tmp_path_factory, settle):
+    """get(name[, settle]) -> (Scene, settled data file) for the Scene makers in `kinds`, each
+    generated and settled once (the scenes fixtures of this module and the long one)."""
+    cache = {}
+
+    def get(name, settle=settle):
+        if name not in cache:
+            s = kinds[name]()
+            d = tmp_path_factory.mktemp(f"scene_{name}")
+            s.write(d / "scene.data")
+            r = run_lmp(SCENE_DECK + SETTLE, d, **s.variables(data=d / "scene.data",
+                                                              nsettle=settle))
+            check_ok(r)
+            cache[name] = (s, d / "settled.data")
+        return cache[name]
+
+    return get
+
+
 @pytest.fixture(scope="module")
 def scenes(tmp_path_factory):
     """scenes(name) -> (Scene, settled data file); made once per module."""
@@ -58,20 +77,7 @@ def scenes(tmp_path_factory):
         # room for the hanging wall to travel 500 m (memory runs)
         "long": lambda: Scene("quick", target=500.0),
     }
-    cache = {}
-
-    def get(name, settle=12000):
-        if name not in cache:
-            s = kinds[name]()
-            d = tmp_path_factory.mktemp(f"scene_{name}")
-            s.write(d / "scene.data")
-            r = run_lmp(SCENE_DECK + SETTLE, d, **s.variables(data=d / "scene.data",
-                                                              nsettle=settle))
-            check_ok(r)
-            cache[name] = (s, d / "settled.data")
-        return cache[name]
-
-    return get
+    return settled_scenes(kinds, tmp_path_factory, 12000)
 
 
 def run_scene(workdir, scene, data, tail, np=1, omp=0, timeout=600, args=(), **over):
@@ -961,3 +967,52 @@ def test_memory_check_can_fail(scenes, tmp_path):
     out, samples, builds = memory_run(s, data, tmp_path, GROW, nloop=10, nrun=300)
     dheap, drss = growth(out, samples, 10)
     assert dheap > HEAP_TOL and drss > RSS_TOL, (dheap, drss)
+
+
+# ---------------------------------------------------------------------------------------------
+# restart files of another layout
+# ---------------------------------------------------------------------------------------------
+
+FORMAT_DECK = """units si
+dimension 2
+atom_style sphere
+boundary p p p
+comm_modify vel yes
+region box block 0 200 0 200 -100 100
+create_box 2 box
+lattice sq 20
+create_atoms 1 box
+set group all type/fraction 2 0.5 7
+set group all diameter 20
+set group all density/disc 2200
+pair_style ${pstyle}
+pair_coeff 1 1 saltdem/cohesive 1e9 3e8 0.5 0 0 0
+pair_coeff 2 2 saltdem/viscous 5e8 0 fluid 28 1e8
+pair_coeff 1 2 saltdem/viscous 5e8 1e9 fluid 28 1e8
+fix nve all saltdem/nve inertia 1000
+timestep 1e-4
+run 10
+write_restart r.restart
+"""
+
+
+@pytest.mark.parametrize("style", ["saltdem/cohesive", "saltdem/viscous"])
+def test_restart_of_another_format_stops(lmp, tmp_path, style):
+    """A restart file whose SaltDEM restart format differs from this build's (the coefficients
+    and the contact history are laid out per release) stops read_restart with a message that
+    names the style and both formats; the unaltered file reads back."""
+    import struct
+    deck = FORMAT_DECK.replace("${pstyle}", "hybrid saltdem/cohesive saltdem/viscous")
+    check_ok(lmp(deck))
+    check_ok(lmp("read_restart r.restart\n"))
+    raw = (tmp_path / "r.restart").read_bytes()
+    mark = struct.pack("d", -20261123.0)
+    assert raw.count(mark) == 2, "one format mark per SaltDEM sub-style"
+    first = raw.index(mark)
+    # the sub-styles are written in the order of pair_style hybrid: cohesive, then viscous
+    at = first if style == "saltdem/cohesive" else raw.index(mark, first + 1)
+    (tmp_path / "r.restart").write_bytes(raw[:at] + struct.pack("d", -20250101.0) + raw[at + 8:])
+    r = lmp("read_restart r.restart\n")
+    line = assert_error(r, f"Pair style {style}", "restart format -20250101",
+                        "restart format -20261123")
+    assert "data file" in line

@@ -13,12 +13,12 @@ import re
 
 import pytest
 
-from lmprun import check_ok, run_lmp
-from reliability_lib import PRESETS, SCENE_DECK, Scene, max_rel_diff, read_dump
+from lmprun import check_ok
+from reliability_lib import PRESETS, Scene, max_rel_diff, read_dump
 from test_reliability import (DUMP, ENERGY, FAULT, FINAL, MPI_TOL, RESTART_TOL, RST_THERMO,
-                              SCALE, SETTLE, assert_error, assert_stable, continue_from, growth,
+                              SCALE, assert_error, assert_stable, continue_from, growth,
                               limit_and_advice, max_wall_overlap, memory_run, read_data,
-                              run_scene, HEAP_TOL, RSS_TOL, REDEFINE)
+                              run_scene, settled_scenes, HEAP_TOL, RSS_TOL, REDEFINE)
 
 pytestmark = pytest.mark.long
 
@@ -35,20 +35,7 @@ def scenes(tmp_path_factory):
         # about 1,100 of the paper's discs
         "paper-big": lambda: Scene("paper", width=96, salt=12, cover=12, target=40.0),
     }
-    cache = {}
-
-    def get(name, settle=20000):
-        if name not in cache:
-            s = kinds[name]()
-            d = tmp_path_factory.mktemp(f"scene_{name}")
-            s.write(d / "scene.data")
-            r = run_lmp(SCENE_DECK + SETTLE, d, **s.variables(data=d / "scene.data",
-                                                              nsettle=settle))
-            check_ok(r)
-            cache[name] = (s, d / "settled.data")
-        return cache[name]
-
-    return get
+    return settled_scenes(kinds, tmp_path_factory, 20000)
 
 
 # ---- stiff ------------------------------------------------------------------------------------

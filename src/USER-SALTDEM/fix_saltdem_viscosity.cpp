@@ -100,8 +100,8 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
         }
   }
   if (count == 0)
-    error->all(FLERR, "Fix saltdem/viscosity: pair style saltdem/viscous has no coefficients set; "
-               "give its pair_coeff commands before the fix");
+    error->all(FLERR, "Fix saltdem/viscosity: pair style saltdem/viscous needs its coefficients "
+               "set before the fix is defined: give its pair_coeff commands first");
 
   t0 = model_time();
   vector_flag = 1;

@@ -242,6 +242,27 @@ void PairSaltdem::read_restart(FILE *fp)
     }
 }
 
+void PairSaltdem::write_restart_format(FILE *fp)
+{
+  const double v = RESTART_FORMAT;
+  fwrite(&v, sizeof(double), 1, fp);
+}
+
+void PairSaltdem::read_restart_format(FILE *fp)
+{
+  double v = 0.0;
+  if (comm->me == 0) utils::sfread(FLERR, &v, sizeof(double), 1, fp, nullptr, error);
+  MPI_Bcast(&v, 1, MPI_DOUBLE, 0, world);
+  if (v != RESTART_FORMAT)
+    error->all(FLERR,
+               "Pair style {}: the restart file was written by another SaltDEM version ({}; this "
+               "one reads restart format {:.0f}), whose coefficients and contact history are laid "
+               "out differently. Continue the run with the version that wrote it, or start again "
+               "from a data file (write_data) with this one",
+               name, v > 0.0 ? "one before restart formats were marked" :
+                               fmt::format("restart format {:.0f}", v), RESTART_FORMAT);
+}
+
 /* history of (i,j) seen from j: antisymmetric by default, but the rolling
    displacement is symmetric (see the derived style's transfer_factor) */
 

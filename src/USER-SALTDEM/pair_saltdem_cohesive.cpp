@@ -170,9 +170,11 @@ void PairSaltdemCohesive::init_style()
   size_history = rolling ? 6 : 3;
   delete[] transfer_factor;
   transfer_factor = new double[size_history];
-  // tangential displacement flips sign seen from j, rolling displacement does not
-  for (int k = 0; k < size_history; k++) transfer_factor[k] = (k < 3) ? -1.0 : 1.0;
-  nondefault_history_transfer = rolling ? 1 : 0;
+  // seen from j the tangential displacement flips sign and the rolling displacement does not;
+  // in 2D both are kept as lengths along the tangent (-n1, n0), which flips too (saltdem_contact.h)
+  const bool dim2 = (domain->dimension == 2);
+  for (int k = 0; k < size_history; k++) transfer_factor[k] = ((k < 3) != dim2) ? -1.0 : 1.0;
+  nondefault_history_transfer = 1;
 
   dt = update->dt;
   PairSaltdem::init_style();
@@ -214,11 +216,13 @@ double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
 
 void PairSaltdemCohesive::write_restart_settings(FILE *fp)
 {
+  write_restart_format(fp);
   fwrite(&dtfactor, sizeof(double), 1, fp);
 }
 
 void PairSaltdemCohesive::read_restart_settings(FILE *fp)
 {
+  read_restart_format(fp);
   if (comm->me == 0) utils::sfread(FLERR, &dtfactor, sizeof(double), 1, fp, nullptr, error);
   MPI_Bcast(&dtfactor, 1, MPI_DOUBLE, 0, world);
 }

@@ -524,6 +524,7 @@ void PairSaltdemViscous::read_restart(FILE *fp)
 
 void PairSaltdemViscous::write_restart_settings(FILE *fp)
 {
+  write_restart_format(fp);
   fwrite(&calibration, sizeof(double), 1, fp);
   fwrite(&correction, sizeof(double), 1, fp);
   fwrite(&dtfactor, sizeof(double), 1, fp);
@@ -544,6 +545,7 @@ void PairSaltdemViscous::write_restart_settings(FILE *fp)
 
 void PairSaltdemViscous::read_restart_settings(FILE *fp)
 {
+  read_restart_format(fp);
   double buf[4];
   if (comm->me == 0) utils::sfread(FLERR, buf, sizeof(double), 4, fp, nullptr, error);
   MPI_Bcast(buf, 4, MPI_DOUBLE, 0, world);

@@ -92,19 +92,10 @@ inline void contact_kinematics(const double *xi, const double *xj, const double 
   if (want_reff) c.reff = radi * radj / (radi + radj);
 }
 
-/* Keep a history vector in the tangent plane as the contact rotates, with
+/* Keep a 3D history vector in the tangent plane as the contact rotates, with
    its length unchanged (frame-indifferent spring). */
-template <int DIM = 3> inline void rotate_into_plane(double *h, const double *n)
+inline void rotate_into_plane(double *h, const double *n)
 {
-  if (DIM == 2) {    // h[2] stays 0; the tangent line is t = (-n1, n0): h = +-|h| t
-    const double hn = h[0] * n[0] + h[1] * n[1];
-    if (hn == 0.0) return;
-    const double ht = n[0] * h[1] - n[1] * h[0];
-    const double len = (ht == 0.0) ? 0.0 : std::copysign(std::sqrt(ht * ht + hn * hn), ht);
-    h[0] = -len * n[1];
-    h[1] = len * n[0];
-    return;
-  }
   const double hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
   if (hn == 0.0) return;
   const double before = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
@@ -201,7 +192,113 @@ inline double cohesive_normal_energy(const CohesiveParams &p, double delta)
    the history on (false during setup, as in LAMMPS's granular styles).
    evdwl: elastic energy stored in the contact (EVFLAG only).  Returns true
    while the discs touch (delta > 0); in the cohesive gap only the normal
-   force acts (ti, tj are then left unset). */
+   force acts (ti, tj are then left unset).
+
+   Tangential: a spring with the Mohr-Coulomb limit c + mu Fn (Fn elastic,
+   compressive here); sliding caps the force and resets the spring to it.
+   The spring first follows this step's sliding, as in gran/hooke/history.
+   Rolling resistance: an elastic-plastic spring (stiffness kr) on the
+   rolling displacement, rate reff (w_i - w_j) x n (Wang et al. 2015),
+   limited by mur * Fn; the resisting torque is reff n x fr.  Both limits are
+   compared squared (fmax, frmax >= 0: cohesion >= 0 and a compressive
+   elastic force): a square root only for a sliding or rolling contact.
+
+   DIM 2: both displacements lie along the tangent t = (-n1, n0) and are kept
+   as signed lengths along it (hist[0], hist[3]; hist[1,2,4,5] stay 0): they
+   turn with the contact by construction.  DIM 3: vectors, turned into the
+   new tangent plane with their lengths kept (rotate_into_plane).  The two
+   give the same forces. */
+template <int EVFLAG>
+inline void cohesive_tangent_2d(const CohesiveParams &p, const Contact &c, double *hist,
+                                bool rolling, double dt, bool advance, double gt, double fn_el,
+                                double *f, double *ti, double *tj, double &evdwl)
+{
+  const double t0 = -c.n[1], t1 = c.n[0];
+  const double vt = c.vt[0] * t0 + c.vt[1] * t1;
+  double &xi = hist[0];
+  if (advance) xi += vt * dt;
+  double ft = -p.kt * xi - gt * vt;
+  const double fmax = p.coh + p.mu * fn_el;
+  if (ft * ft > fmax * fmax) {
+    ft = std::copysign(fmax, ft);
+    if (p.kt > 0.0) xi = -(ft + gt * vt) / p.kt;
+  }
+  if (EVFLAG) evdwl += 0.5 * p.kt * xi * xi;
+  f[0] += ft * t0;
+  f[1] += ft * t1;
+  ti[0] = ti[1] = tj[0] = tj[1] = 0.0;
+  ti[2] = -c.li * ft;    // -l (n x ft)_z
+  tj[2] = -c.lj * ft;
+
+  if (rolling && p.kr > 0.0) {
+    double &psi = hist[3];
+    if (advance) psi += c.reff * c.wr[2] * dt;
+    double fr = -p.kr * psi;
+    const double frmax = p.mur * fn_el;
+    if (fr * fr > frmax * frmax) {
+      fr = std::copysign(frmax, fr);
+      psi = -fr / p.kr;
+    }
+    if (EVFLAG) evdwl += 0.5 * p.kr * psi * psi;
+    ti[2] += c.reff * fr;
+    tj[2] -= c.reff * fr;
+  }
+}
+
+template <int EVFLAG>
+inline void cohesive_tangent_3d(const CohesiveParams &p, const Contact &c, double *hist,
+                                bool rolling, double dt, bool advance, double gt, double fn_el,
+                                double *f, double *ti, double *tj, double &evdwl)
+{
+  double *xi = hist;
+  rotate_into_plane(xi, c.n);
+  if (advance)
+    for (int k = 0; k < 3; k++) xi[k] += c.vt[k] * dt;
+  double ft[3];
+  for (int k = 0; k < 3; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
+  const double fmax = p.coh + p.mu * fn_el;
+  const double ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
+  if (ft2 > fmax * fmax) {
+    const double s = fmax / std::sqrt(ft2);
+    for (int k = 0; k < 3; k++) {
+      ft[k] *= s;
+      if (p.kt > 0.0) xi[k] = -(ft[k] + gt * c.vt[k]) / p.kt;
+    }
+  }
+  if (EVFLAG) evdwl += 0.5 * p.kt * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+  for (int k = 0; k < 3; k++) f[k] += ft[k];
+  contact_torques<3>(c, ft, ti, tj);
+
+  if (rolling && p.kr > 0.0) {
+    double *psi = hist + 3;
+    rotate_into_plane(psi, c.n);
+    const double vr[3] = {c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]),
+                          c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]),
+                          c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0])};
+    if (advance)
+      for (int k = 0; k < 3; k++) psi[k] += vr[k] * dt;
+    double fr[3];
+    for (int k = 0; k < 3; k++) fr[k] = -p.kr * psi[k];
+    const double frmax = p.mur * fn_el;
+    const double fr2 = fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2];
+    if (fr2 > frmax * frmax) {
+      const double s = frmax / std::sqrt(fr2);
+      for (int k = 0; k < 3; k++) {
+        fr[k] *= s;
+        psi[k] = -fr[k] / p.kr;
+      }
+    }
+    if (EVFLAG) evdwl += 0.5 * p.kr * (psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]);
+    const double tr[3] = {c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]),
+                          c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]),
+                          c.reff * (c.n[0] * fr[1] - c.n[1] * fr[0])};
+    for (int k = 0; k < 3; k++) {
+      ti[k] += tr[k];
+      tj[k] -= tr[k];
+    }
+  }
+}
+
 template <int DIM = 3, int EVFLAG = 1>
 inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hist, bool rolling,
                            double dt, bool advance, double *f, double *ti, double *tj,
@@ -214,81 +311,11 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
   if (EVFLAG) evdwl = cohesive_normal_energy(p, c.delta);
   for (int k = 0; k < DIM; k++) f[k] = fn * c.n[k];
   if (c.delta <= 0.0) return false;
-
-  // tangential spring with the Mohr-Coulomb limit c + mu Fn (Fn elastic,
-  // compressive here); sliding caps the force and resets the spring to it
-  double *xi = hist;
-  rotate_into_plane<DIM>(xi, c.n);
-  if (advance)    // the spring first follows this step's sliding, as in gran/hooke/history
-    for (int k = 0; k < DIM; k++) xi[k] += c.vt[k] * dt;
   const double gt = p.ct * sqm;
-  double ft[3];
-  for (int k = 0; k < DIM; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
-  if (DIM == 2) ft[2] = 0.0;
-  // (fmax >= 0: cohesion >= 0 and a compressive elastic force; compared squared, the
-  // square root only for a sliding contact)
-  const double fmax = p.coh + p.mu * fn_el;
-  const double ft2 = (DIM == 3) ? ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]
-                                : ft[0] * ft[0] + ft[1] * ft[1];
-  if (ft2 > fmax * fmax) {
-    const double s = fmax / std::sqrt(ft2);
-    for (int k = 0; k < DIM; k++) {
-      ft[k] *= s;
-      if (p.kt > 0.0) xi[k] = -(ft[k] + gt * c.vt[k]) / p.kt;
-    }
-  }
-  if (EVFLAG)
-    evdwl += 0.5 * p.kt *
-        ((DIM == 3) ? xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] : xi[0] * xi[0] + xi[1] * xi[1]);
-  for (int k = 0; k < DIM; k++) f[k] += ft[k];
-  contact_torques<DIM>(c, ft, ti, tj);
-
-  // rolling resistance: elastic-plastic spring (stiffness kr) on the rolling
-  // displacement, rate reff (w_i - w_j) x n (Wang et al. 2015), limited by
-  // mur * Fn; the resisting torque is reff n x fr
-  if (rolling && p.kr > 0.0) {
-    double *psi = hist + 3;
-    rotate_into_plane<DIM>(psi, c.n);
-    double vr[3], fr[3];
-    if (DIM == 3) {
-      vr[0] = c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]);
-      vr[1] = c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]);
-      vr[2] = c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0]);
-    } else {    // the 3D expressions with n[2] = wr[0] = wr[1] = 0
-      vr[0] = c.reff * -(c.wr[2] * c.n[1]);
-      vr[1] = c.reff * (c.wr[2] * c.n[0]);
-      vr[2] = 0.0;
-    }
-    if (advance)
-      for (int k = 0; k < DIM; k++) psi[k] += vr[k] * dt;
-    for (int k = 0; k < DIM; k++) fr[k] = -p.kr * psi[k];
-    if (DIM == 2) fr[2] = 0.0;
-    const double frmax = p.mur * fn_el;
-    const double fr2 = (DIM == 3) ? fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]
-                                  : fr[0] * fr[0] + fr[1] * fr[1];
-    if (fr2 > frmax * frmax) {
-      const double s = frmax / std::sqrt(fr2);
-      for (int k = 0; k < DIM; k++) {
-        fr[k] *= s;
-        psi[k] = -fr[k] / p.kr;
-      }
-    }
-    if (EVFLAG)
-      evdwl += 0.5 * p.kr *
-          ((DIM == 3) ? psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]
-                      : psi[0] * psi[0] + psi[1] * psi[1]);
-    if (DIM == 3) {
-      const double tr0 = c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]);
-      const double tr1 = c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]);
-      ti[0] += tr0;
-      ti[1] += tr1;
-      tj[0] -= tr0;
-      tj[1] -= tr1;
-    }
-    const double tr2 = c.reff * (c.n[0] * fr[1] - c.n[1] * fr[0]);
-    ti[2] += tr2;
-    tj[2] -= tr2;
-  }
+  if (DIM == 2)
+    cohesive_tangent_2d<EVFLAG>(p, c, hist, rolling, dt, advance, gt, fn_el, f, ti, tj, evdwl);
+  else
+    cohesive_tangent_3d<EVFLAG>(p, c, hist, rolling, dt, advance, gt, fn_el, f, ti, tj, evdwl);
   return true;
 }
 

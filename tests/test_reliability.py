@@ -737,7 +737,7 @@ def test_restart_switching_rolling_drops_history(lmp, tmp_path):
 # 5. MPI ranks and OpenMP threads
 # ---------------------------------------------------------------------------------------------
 
-PAR = FAULT + SCALE + RST_THERMO + "run 3000\n" + DUMP.format("final.dump")
+PAR = FAULT + SCALE + RST_THERMO + "run 3000\n" + DUMP.format("final.dump") + "info fixes\n"
 
 
 @pytest.fixture(scope="module")
@@ -763,6 +763,9 @@ def test_parallel_scene_agrees(par_serial, tmp_path, mode):
     if "omp" in mode:    # hybrid sub-styles keep their names; their lists are the /omp ones
         assert "Last active /omp style is pair_style saltdem/viscous" in r.out
         assert "size, history, omp" in r.out
+        assert re.search(r"icover,\s+style = saltdem/nve/omp", r.out), "threaded integrator"
+    else:
+        assert re.search(r"icover,\s+style = saltdem/nve,", r.out)
     b = read_dump(tmp_path / "final.dump")
     W = s.box()[1] - s.box()[0]
     assert max_rel_diff(a, b, W) < MPI_TOL

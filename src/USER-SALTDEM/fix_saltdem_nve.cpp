@@ -29,7 +29,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixSaltdemNVE::FixSaltdemNVE(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), inertia(1.0), check_every(100)
+    Fix(lmp, narg, arg), inertia(1.0), check_every(100), nthreads(1)
 {
   time_integrate = 1;
   int iarg = 3;
@@ -106,6 +106,10 @@ template <int DIM, bool DRIFT> void FixSaltdemNVE::integrate()
   const double dtfs = dtf / inertia;
   const double dtir = dtfs / inertia_factor;
   const int nlocal = atom->nlocal;
+  // saltdem/nve/omp: the atoms are independent, so the threads give the serial numbers
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(nthreads) schedule(static) if (nthreads > 1)
+#endif
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     const double dtfm = dtfs / rmass[i];

@@ -29,6 +29,7 @@ class FixSaltdemNVE : public Fix {
   double inertia;       // inertial mass = inertia * rmass (quasi-static mass scaling)
   int check_every;      // steps between finite-value checks (0: never)
   double dtv, dtf, inertia_factor;    // moment of inertia = inertia_factor * m r^2
+  int nthreads;         // OpenMP threads of the integration loops (saltdem/nve/omp)
   void check_finite();
   template <int DIM, bool DRIFT> void integrate();
 };

@@ -162,15 +162,15 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
   const bool advance = (update->setupflag == 0);    // history is not advanced in setup
-  // a law without history (Derived::HISTORY false) compiles without the history bookkeeping
-  constexpr bool HIST = Derived::HISTORY;
-  const int nhist = HIST ? size_history : 0;
+  // a law without history (Derived::HISTORY false): nhist is the constant 0, and the history
+  // bookkeeping compiles away
+  const int nhist = Derived::HISTORY ? size_history : 0;
 
   const int *ilist = list->ilist;
   const int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  int **firsttouch = (HIST && nhist) ? fix_history->firstflag : nullptr;
-  double **firsthist = (HIST && nhist) ? fix_history->firstvalue : nullptr;
+  int **firsttouch = nhist ? fix_history->firstflag : nullptr;
+  double **firsthist = nhist ? fix_history->firstvalue : nullptr;
 
   double fij[3], ti[3], tj[3];
 
@@ -183,8 +183,8 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
     const double *reach_i = reach_abs[itype];
     const int *jlist = firstneigh[i];
     const int jnum = numneigh[i];
-    int *touch = (HIST && nhist) ? firsttouch[i] : nullptr;
-    double *allhist = (HIST && nhist) ? firsthist[i] : nullptr;
+    int *touch = nhist ? firsttouch[i] : nullptr;
+    double *allhist = nhist ? firsthist[i] : nullptr;
     const double mi = rmass[i];
     // what i receives is summed here and added once after its neighbours: in memory, each
     // pair would wait for the previous pair's store to f[i]
@@ -199,12 +199,12 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
       const double rsq = (DIM == 3) ? delx * delx + dely * dely + delz * delz
                                     : delx * delx + dely * dely;
       const double reach = MAX(radi + radius[j] + extra_i[jtype], reach_i[jtype]);
-      double *hist = (HIST && nhist) ? &allhist[nhist * jj] : nullptr;
+      double *hist = nhist ? &allhist[nhist * jj] : nullptr;
 
       // out of reach: a pair that is not flagged touching has a zero history
       // already (FixNeighHistory zeroes new pairs, this loop ended ones)
       if (rsq >= reach * reach || rsq == 0.0) {
-        if (HIST && nhist && touch[jj]) {
+        if (nhist && touch[jj]) {
           touch[jj] = 0;
           for (int k = 0; k < nhist; k++) hist[k] = 0.0;
         }
@@ -217,7 +217,7 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
         sumi += rmass[j] * q;
         if (newton_pair || j < nlocal) sum[j] += mi * q;
       }
-      if (HIST && nhist) {
+      if (nhist) {
         if (flags & LAW_TOUCH)
           touch[jj] = 1;
         else if (touch[jj]) {

@@ -222,7 +222,7 @@ void PairSaltdemViscous::init_style()
 
 template <int DIM> void PairSaltdemViscous::kernel_density()
 {
-  const auto x = (const double (*)[3]) atom->x[0];
+  const auto x = atom->x ? (const double (*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
   const double *m = atom->rmass;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;

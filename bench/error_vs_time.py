@@ -44,6 +44,9 @@ import time
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "python"))
+from saltdem_post.calibfit import read_ave_chunk  # noqa: E402
+
 CHANNEL = ROOT / "tests" / "decks" / "channel.in"
 PARAMS = ROOT / "potentials" / "salt_paper.params"
 PACK_IN = ROOT / "tools" / "pack.in"
@@ -119,17 +122,8 @@ def pack_for(f, work):
 
 
 def read_profile(path):
-    """Blocks of the deck's channel_profile.txt: list of arrays (y, count, vx)."""
-    blocks = []
-    for line in path.read_text().splitlines():
-        s = line.split()
-        if not s or s[0].startswith("#"):
-            continue
-        if len(s) == 3:
-            blocks.append([])
-        else:
-            blocks[-1].append([float(v) for v in s[1:]])
-    return [np.array(b) for b in blocks]
+    """Blocks of the deck's channel_profile.txt (fix ave/chunk): list of arrays (y, count, vx)."""
+    return [b[:, 1:] for b in read_ave_chunk(path)]
 
 
 def channel_run(flow, s, work, tag):

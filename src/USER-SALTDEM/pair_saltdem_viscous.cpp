@@ -18,9 +18,6 @@
 #include "suffix.h"
 
 #include "omp_compat.h"
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
 
 #include <cfloat>
 #include <cmath>

@@ -8,7 +8,7 @@ import pytest
 from lmprun import ROOT, lmp_path
 
 TINY = dict(preset="quick", width=1250, salt=250, cover=500, target=10, f="5 10",
-            nsettle=300, dstep=0.0025, root=str(ROOT))
+            nsettle=300, rate=1, root=str(ROOT))
 
 
 @pytest.fixture(scope="module")
@@ -25,8 +25,9 @@ def tiny_run(tmp_path_factory):
 
 def read_dump(path):
     lines = path.read_text().splitlines()
-    cols = lines[8].split()[2:]
-    data = np.array([[float(v) for v in l.split()] for l in lines[9:]])
+    head = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))    # (after TIME)
+    cols = lines[head].split()[2:]
+    data = np.array([[float(v) for v in l.split()] for l in lines[head + 1:]])
     return {c: data[:, k] for k, c in enumerate(cols)}
 
 

@@ -26,8 +26,9 @@ create_box 1 box
 def read_dump(path):
     """A write_dump custom file as {column: array}, rows sorted by id."""
     lines = path.read_text().splitlines()
-    cols = lines[8].split()[2:]
-    data = np.array([[float(v) for v in l.split()] for l in lines[9:]], ndmin=2)
+    head = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))    # (after TIME)
+    cols = lines[head].split()[2:]
+    data = np.array([[float(v) for v in l.split()] for l in lines[head + 1:]], ndmin=2)
     data = data[np.argsort(data[:, cols.index("id")])]
     return {c: data[:, k] for k, c in enumerate(cols)}
 

@@ -27,8 +27,9 @@ def dumps(wd, name):
 
 def read_dump(path):
     lines = path.read_text().splitlines()
-    cols = lines[8].split()[2:]
-    data = np.array([[float(v) for v in l.split()] for l in lines[9:]])
+    head = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))    # (after TIME)
+    cols = lines[head].split()[2:]
+    data = np.array([[float(v) for v in l.split()] for l in lines[head + 1:]])
     d = {c: data[:, k] for k, c in enumerate(cols)}
     order = np.argsort(d["id"])
     return {c: v[order] for c, v in d.items()}
@@ -99,7 +100,7 @@ def assembly(tmp_path_factory):
     wd = tmp_path_factory.mktemp("assembly")
     geo = dict(width=2500, salt=400, cover=700, marker=100)
     proc = run_deck("expt1.in", wd, preset="tiny", rmin=25, rmax=62.5, dist="paper", nsettle=2000,
-                    target=1, f=1, dt=0.0025, dstep=0.0025, S=4, **geo)
+                    target=1, f=1, dt=0.0025, rate=1, S=4, **geo)
     return wd, proc, geo
 
 

@@ -137,10 +137,8 @@ void PairSaltdem::init_style()
   MPI_Allreduce(&onerad[1], &maxrad[1], n, MPI_DOUBLE, MPI_MAX, world);
 
   // the time step must be stable for the law and the lightest particles
-  std::vector<double> mmin(n + 1);
-  min_inertial_mass(mmin.data());
   std::string why;
-  const double dtmax = stable_dt(mmin.data(), why);
+  const double dtmax = stable_limit(why);
   if (dtmax > 0.0 && update->dt > dtmax)
     error->all(FLERR,
                "Pair style {}: timestep {:.6g} exceeds the stable limit {:.6g} set by {}. "
@@ -150,6 +148,13 @@ void PairSaltdem::init_style()
   if (dtmax > 0.0 && comm->me == 0)
     utils::logmesg(lmp, "Pair style {}: timestep {:.6g} = {:.3g} of the stable limit {:.6g} ({})\n",
                    name, update->dt, update->dt / dtmax, dtmax, why);
+}
+
+double PairSaltdem::stable_limit(std::string &why)
+{
+  std::vector<double> mmin(atom->ntypes + 1);
+  min_inertial_mass(mmin.data());
+  return stable_dt(mmin.data(), why);
 }
 
 /* smallest mass per type that the integrator sees: rmass times the inertia

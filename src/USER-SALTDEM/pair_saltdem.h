@@ -46,6 +46,10 @@ class PairSaltdem : public Pair {
   // sums once every thread has finished
   virtual double *loop_sum(int /*tid*/, int /*nthreads*/) { return nullptr; }
   virtual void post_loop(int /*nthreads*/) {}
+  // the largest stable time step for the present atoms, coefficients and integrators, and
+  // what sets it (0: nothing limits it); read by init_style() and by saltdem/timestep
+  double stable_limit(std::string &why);
+  const char *name_of() const { return name; }
 
   // what a law returns: the discs touch (history kept), the law made torques
   enum { LAW_TOUCH = 1, LAW_TORQUE = 2 };

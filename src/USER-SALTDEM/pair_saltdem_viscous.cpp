@@ -263,18 +263,14 @@ template <int DIM> void PairSaltdemViscous::kernel_density()
 
 void PairSaltdemViscous::pre_loop()
 {
+  // the force pass sums every pair's q (0 for CONTACT pairs) into rho, or under -sf omp into
+  // one slice per thread (post_loop adds them up): needed with no FLUID pair too
+  grow_arrays();
+  const int nthreads = (suffix_flag & Suffix::OMP) ? comm->nthreads : 1;
+  if (nthreads > 1 && (bigint) nthreads * nmax > (bigint) rho_thr.size())
+    rho_thr.resize((size_t) nthreads * nmax);
   if (!any_fluid) return;
   const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  if (atom->nmax > nmax) {
-    memory->destroy(vol);
-    memory->destroy(apress);
-    memory->destroy(rho);
-    nmax = atom->nmax;
-    memory->create(vol, nmax, "pair:vol");
-    memory->create(apress, nmax, "pair:apress");
-    memory->create(rho, nmax, "pair:rho");
-  }
   double *m = atom->rmass;
   int *type = atom->type;
   double *rhoc = atom->dvector[index_rho];
@@ -325,11 +321,6 @@ void PairSaltdemViscous::pre_loop()
   for (int i = 0; i < nlocal; i++)
     if (fluidself[type[i]] && rhoc[i] <= 0.0) rhoc[i] = params[type[i]][type[i]].rho0;
 
-  // -sf omp: one slice of d rho / dt per thread (post_loop adds them up)
-  const int nthreads = (suffix_flag & Suffix::OMP) ? comm->nthreads : 1;
-  if (nthreads > 1 && (bigint) nthreads * nmax > (bigint) rho_thr.size())
-    rho_thr.resize((size_t) nthreads * nmax);
-
   // a boundary particle (wall, cover) gets the volume it would have at the
   // fluid's reference density
   double rhob = 0.0;
@@ -344,12 +335,23 @@ void PairSaltdemViscous::pre_loop()
   comm->forward_comm(this);
 }
 
+void PairSaltdemViscous::grow_arrays()
+{
+  if (atom->nmax <= nmax) return;
+  memory->destroy(vol);
+  memory->destroy(apress);
+  memory->destroy(rho);
+  nmax = atom->nmax;
+  memory->create(vol, nmax, "pair:vol");
+  memory->create(apress, nmax, "pair:apress");
+  memory->create(rho, nmax, "pair:rho");
+}
+
 /* the array the force pass sums d rho / dt into: rho, or thread tid's slice
    (zeroed here, by the thread that fills it) */
 
 double *PairSaltdemViscous::loop_sum(int tid, int nthreads)
 {
-  if (!any_fluid) return nullptr;
   const int nall = atom->nlocal + atom->nghost;
   double *out = (nthreads > 1) ? rho_thr.data() + (size_t) tid * nmax : rho;
   for (int i = 0; i < nall; i++) out[i] = 0.0;
@@ -446,17 +448,18 @@ double PairSaltdemViscous::init_one(int i, int j)
 double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
 {
   const int n = atom->ntypes;
+  const bool disc = (domain->dimension == 2);    // (also before init_style: saltdem/timestep)
   // smallest inertial mass per unit disc volume per type
   std::vector<double> local(n + 1, DBL_MAX), mv(n + 1);
   for (int i = 0; i < atom->nlocal; i++) {
     const double s = inertia_scale(i);
     const double r = atom->radius[i];
-    const double vol = volfac * (dim2 ? r * r : r * r * r);
+    const double vol = disc ? M_PI * r * r : 4.0 * M_PI / 3.0 * r * r * r;
     if (s > 0.0 && vol > 0.0) local[atom->type[i]] = MIN(local[atom->type[i]], s * atom->rmass[i] / vol);
   }
   MPI_Allreduce(&local[1], &mv[1], n, MPI_DOUBLE, MPI_MIN, world);
 
-  const double rot = dim2 ? 3.0 : 3.5;
+  const double rot = disc ? 3.0 : 3.5;
   double best = DBL_MAX;
   auto consider = [&](double lim, std::string &&reason) {
     if (lim < best) {

@@ -104,6 +104,7 @@ class PairSaltdemViscous : public PairSaltdem {
   std::vector<double> rho0_restart, h_restart;
 
   template <int DIM> void kernel_density();
+  void grow_arrays();    // vol, apress, rho for the owned and ghost atoms
   std::vector<double> rho_thr;    // -sf omp: per-thread partial sums of d rho / dt
   void allocate_params(int) override;
   void *pair_params(int i, int j) override { return &params[i][j]; }

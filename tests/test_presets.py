@@ -1,0 +1,112 @@
+"""Scene presets at the paper's physics: every preset of every scene deck runs a few hundred
+steps of faulting (narrower sections at the finer presets, so that CI stays short), takes its
+time step from the stable limit, and prints its dimensionless groups beside the paper's; the
+study's deck options parse, run, and refuse bad values."""
+import re
+
+import pytest
+
+from test_scenes import run_deck
+
+# paper, standard rate (Table 1; brief): eta v / (rho g H_salt H_cover), Reynolds number per unit
+# inertia factor S rho v H_salt / eta, the cover's inertial number per sqrt(S) at the mean disc
+PAPER_VISC = 5e8 * 0.05 / (2200 * 9.81 * 1000 * 1750)
+PAPER_RE = 2200 * 0.05 * 1000 / 5e8
+SHORT = dict(target=0.05, f=0.05, nsettle=100)
+# preset: (S, narrower widths for the finer presets: expt1/expt3, expt2)
+PRESETS = {"quick": (4, None, None), "medium": (16, 2500, 5000), "full": (20, 1250, 5000)}
+
+
+def groups(out):
+    """The 'scene groups' block: {name: value} and the time step line's numbers."""
+    vals = {}
+    for key, pat in [("visc", r"viscous stress / overburden .* ([0-9.eE+-]+) \| 6.6e-4"),
+                     ("re", r"Reynolds number with inertia .* ([0-9.eE+-]+) \| 2.2e-4"),
+                     ("coh", r"cover strength / overburden .* ([0-9.eE+-]+) \| 0.066"),
+                     ("inertial", r"cover inertial number .* ([0-9.eE+-]+) \| 3.8e-6"),
+                     ("dt", r"time step ([0-9.eE+-]+) s, drive"),
+                     ("dstep", r"drive ([0-9.eE+-]+) m per step")]:
+        m = re.search(pat, out)
+        assert m, f"no '{key}' in the scene groups:\n{out[-3000:]}"
+        vals[key] = float(m.group(1))
+    m = re.search(r"saltdem/timestep: timestep ([0-9.eE+-]+) = ([0-9.]+) of the stable limit", out)
+    assert m, out[-3000:]
+    vals["dt_set"], vals["frac"] = float(m.group(1)), float(m.group(2))
+    return vals
+
+
+@pytest.mark.parametrize("deck", ["expt1", "expt2", "expt3"])
+@pytest.mark.parametrize("preset", list(PRESETS))
+def test_preset_runs_at_the_papers_physics(tmp_path, preset, deck):
+    S, w13, w2 = PRESETS[preset]
+    width = w2 if deck == "expt2" else w13
+    extra = dict(width=width) if width else {}
+    if deck == "expt2" and width:
+        extra["kwidth"] = 1250
+    proc = run_deck(f"{deck}.in", tmp_path, timeout=1200, preset=preset, **SHORT, **extra)
+    assert f"{deck}: done, displacement" in proc.stdout
+    g = groups(proc.stdout)
+    # the paper's salt and drive: the viscous group and the Reynolds number per unit S are the paper's
+    assert g["visc"] == pytest.approx(PAPER_VISC, rel=0.01)
+    assert g["re"] == pytest.approx(S * PAPER_RE, rel=0.01) and g["re"] < 0.01
+    assert g["inertial"] < 1e-3
+    assert 0.02 < g["coh"] < 0.1
+    # dt: 0.85 of the limit, and the drive of the paper's 0.05 m/s
+    assert g["frac"] == 0.85 and g["dt"] == pytest.approx(g["dt_set"], rel=1e-3)
+    assert g["dstep"] / g["dt"] == pytest.approx(0.05, rel=1e-3)
+    # a few hundred faulting steps at most
+    steps = re.search(r"(\d+) steps to 0.05 m", proc.stdout)
+    assert steps and 50 < int(steps.group(1)) < 1000
+
+
+def test_low_rate_scales_the_viscous_group(tmp_path):
+    """Fig. 6's 5x lower rate: the viscous group and Re fall 5x (Table 2: Re 0.000044)."""
+    proc = run_deck("expt1.in", tmp_path, preset="quick", rate=0.01, **dict(SHORT, target=0.01, f=0.01))
+    g = groups(proc.stdout)
+    assert g["visc"] == pytest.approx(PAPER_VISC / 5, rel=0.01)
+    assert g["re"] / 4 == pytest.approx(0.000044, rel=0.05)
+
+
+# the study's variants (docs/scenes.md): each runs on the tiny scene and says so
+VARIANTS = [
+    (dict(endwall="smooth"), "salt law sph, end walls smooth, frame damping of the salt 0"),
+    (dict(endwall="bonded"), "salt law sph, end walls bonded"),
+    (dict(rightwall="fixed"), "salt law sph, end walls rough"),
+    (dict(saltlaw="contact"), "salt law contact, end walls rough"),
+    (dict(damping="5e4"), "frame damping of the salt 5e4 Pa s/m^2"),
+]
+
+
+@pytest.mark.parametrize("opts,line", VARIANTS, ids=lambda v: str(v) if isinstance(v, dict) else "")
+def test_study_variant_runs(tmp_path, opts, line):
+    proc = run_deck("expt1.in", tmp_path, preset="tiny", **opts)
+    assert "expt1: done, displacement 2.0 m" in proc.stdout
+    assert line in proc.stdout
+    # the contact salt has no SPH fluid (no reference density measured)
+    assert ("reference density of fluid type" in proc.stdout) == (opts.get("saltlaw") != "contact")
+
+
+def test_fixed_right_wall_stays(tmp_path):
+    from test_scenes import dumps, wall_motion
+    run_deck("expt1.in", tmp_path, preset="tiny", rightwall="fixed")
+    frames = dumps(tmp_path, "expt1")
+    right = wall_motion(frames, lambda x, y: (x > 6300) & (y > 0))
+    assert len(right) > 5
+    assert abs(right).max() < 1e-9
+
+
+@pytest.mark.parametrize("opts,words", [
+    (dict(endwall="glued"), "endwall glued must be rough, smooth or bonded"),
+    (dict(saltlaw="granular"), "saltlaw granular must be sph or contact"),
+    (dict(rightwall="away"), "rightwall away must be moving or fixed"),
+    (dict(preset="huge"), "preset huge must be full, medium, quick or tiny"),
+])
+def test_bad_variant_stops(tmp_path, opts, words):
+    import subprocess
+    from lmprun import ROOT, lmp_path
+    cmd = [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-echo", "none", "-var", "root", str(ROOT)]
+    opts = dict(dict(preset="tiny"), **opts)
+    for k, v in opts.items():
+        cmd += ["-var", k, str(v)]
+    proc = subprocess.run(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert proc.returncode != 0 and words in proc.stdout, proc.stdout[-2000:]

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import os
+from dataclasses import asdict
 import sys
 import warnings
 from typing import List, Optional, Sequence
@@ -47,15 +48,31 @@ def _say(text: str) -> None:
     print(text, flush=True)      # summaries on stdout; progress and warnings go to stderr
 
 
-def fault_history(paths: Sequence[str], materials: MaterialMap, fault_x: Optional[float] = None,
+def _tips(fault_x) -> List[float]:
+    if fault_x is None:
+        return []
+    return sorted(float(x) for x in (fault_x if isinstance(fault_x, (list, tuple)) else [fault_x]))
+
+
+def fault_history(paths: Sequence[str], materials: MaterialMap, fault_x=None,
                   progress: Optional[Progress] = None) -> List[dict]:
-    """Fault displacement of every frame relative to the first one."""
+    """Fault displacement of every frame relative to the first one.
+
+    ``fault_x``: None, one x or several (a keystone's two tips: then the
+    displacement on the first fault, see ``outcomes.block_slip``)."""
+    from .outcomes import block_slip
+    tips = _tips(fault_x)
     rows, ref = [], None
     for frame in iter_frames(paths, progress=progress):
         wall = frame.subset(materials.mask(frame["type"], "wall"))
         if ref is None:
             ref = wall
-        fd = fault_displacement(ref, wall, materials, fault_x) if wall.natoms else None
+        if not wall.natoms:
+            fd = None
+        elif len(tips) > 1:
+            fd = block_slip(ref, wall, materials, tips)
+        else:
+            fd = fault_displacement(ref, wall, materials, tips[0] if tips else None)
         row = {"frame": frame.index, "timestep": frame.timestep, "time": frame.time}
         row.update(fd.to_dict() if fd else {"dx": np.nan, "dy": np.nan, "slip": np.nan,
                                              "throw": np.nan, "heave": np.nan})
@@ -87,6 +104,54 @@ def pick_stages(disp: Sequence[float], targets: Sequence[float], increment: floa
         cur = int(np.nanargmin(np.abs(disp - target)))
         stages.append((float(target), cur, previous_frame(disp, cur, increment)))
     return stages
+
+
+def stage_displacements(args, paths: Sequence[str], headers, materials: MaterialMap):
+    """Drive displacement of every frame and how it was obtained: from
+    ``--disp-per-step`` (x timestep), ``--rate`` (x time since the first
+    frame, from the dumps' ITEM: TIME) or measured from the basement discs
+    (``--fault-x``); the measured history is also written to fault.csv."""
+    if args.disp_per_step is not None:
+        disp = np.array([(h.timestep - headers[0].timestep) * args.disp_per_step for h in headers])
+        return disp, f"{args.disp_per_step:g} m per timestep"
+    if args.rate is not None:
+        missing = [h.index for h in headers if h.time is None]
+        if missing:
+            raise ValueError(f"--rate needs the model time in every frame (ITEM: TIME, LAMMPS dump_modify "
+                             f"time yes); frame {missing[0]} has none")
+        disp = np.array([(h.time - headers[0].time) * args.rate for h in headers])
+        return disp, f"{args.rate:g} m/s x model time"
+    history = fault_history(paths, materials, args.fault_x, _progress(args, "fault displacement"))
+    write_csv(_out(args, "fault.csv"), {c: np.array([r[c] for r in history])
+                                        for c in ("frame", "timestep", "dx", "dy", "slip")})
+    return np.array([r["slip"] for r in history]), "measured from the basement discs"
+
+
+def select_stages(args, disp: np.ndarray, n_frames: int):
+    """(target, frame, previous frame) per stage: ``--frames`` as given, or
+    the frame nearest each ``--at`` displacement (warning when the run does
+    not get there; targets beyond the run that map to the same frame are
+    dropped)."""
+    if args.frames:
+        return [(float(disp[c]), c, previous_frame(disp, c, args.increment))
+                for c in FrameSelection(args.frames).resolve(n_frames)]
+    stages = pick_stages(disp, args.at, args.increment)
+    reached = float(np.nanmax(disp))
+    for target, cur, _ in stages:
+        if abs(disp[cur] - target) > 0.5 * args.increment:
+            warnings.warn(f"no frame near {target:g} m of fault displacement (run reaches {reached:.1f} m); "
+                          f"using frame {cur} at {disp[cur]:.1f} m")
+    unique = {}
+    for stage in stages:
+        unique.setdefault(stage[1], stage)
+    return list(unique.values())
+
+
+def read_stage_frames(args, paths: Sequence[str], stages, extra: Sequence[int] = ()) -> dict:
+    """The frames the stages need (current and previous), by index."""
+    needed = {c for _, c, _ in stages} | {p for _, _, p in stages if p is not None} | set(extra)
+    return {f.index: f for f in iter_frames(paths, FrameSelection(sorted(needed)),
+                                            _progress(args, "reading stages"))}
 
 
 # ----------------------------------------------------------------- commands
@@ -227,34 +292,10 @@ def cmd_figure(args) -> dict:
     headers = scan_frames(paths)
     if not headers:
         raise DumpFormatError("no frames found")
-    if args.disp_per_step is not None:
-        disp = np.array([(h.timestep - headers[0].timestep) * args.disp_per_step for h in headers])
-        source = f"{args.disp_per_step:g} m per timestep"
-    else:
-        history = fault_history(paths, materials, args.fault_x, _progress(args, "fault displacement"))
-        disp = np.array([r["slip"] for r in history])
-        source = "measured from the basement discs"
-        write_csv(_out(args, "fault.csv"), {c: np.array([r[c] for r in history])
-                                            for c in ("frame", "timestep", "dx", "dy", "slip")})
-    if args.frames:
-        stages = [(float(disp[c]), c, previous_frame(disp, c, args.increment))
-                  for c in FrameSelection(args.frames).resolve(len(headers))]
-    else:
-        stages = pick_stages(disp, args.at, args.increment)
-        reached = float(np.nanmax(disp))
-        for target, cur, _ in stages:
-            if abs(disp[cur] - target) > 0.5 * args.increment:
-                warnings.warn(f"no frame near {target:g} m of fault displacement (run reaches {reached:.1f} m); "
-                              f"using frame {cur} at {disp[cur]:.1f} m")
-        unique = {}
-        for stage in stages:                  # targets beyond the run map to the same frame
-            unique.setdefault(stage[1], stage)
-        stages = list(unique.values())
-    needed = {c for _, c, _ in stages} | {p for _, _, p in stages if p is not None}
-    if args.marker_column not in headers[0].columns:
-        needed.add(0)                         # markers are rebuilt from the first frame
-    frames = {f.index: f for f in iter_frames(paths, FrameSelection(sorted(needed)),
-                                              _progress(args, "reading stages"))}
+    disp, source = stage_displacements(args, paths, headers, materials)
+    stages = select_stages(args, disp, len(headers))
+    # markers are rebuilt from the first frame when the dumps have none
+    frames = read_stage_frames(args, paths, stages, [] if args.marker_column in headers[0].columns else [0])
     rows, report = [], []
     for target, cur, prev in stages:
         frame = frames[cur]
@@ -287,6 +328,63 @@ def cmd_figure(args) -> dict:
     return result
 
 
+def _outcome_options(args):
+    from .outcomes import OutcomeOptions
+    return OutcomeOptions(
+        scene=args.scene, fault_x=tuple(args.fault_x or ()), downslope=args.downslope,
+        marker_column=args.marker_column, radius=args.radius, method=args.method,
+        min_neighbours=args.min_neighbours, band_factor=args.band_factor, band_min_strain=args.band_min_strain,
+        link=args.band_link, band_halfwidth=args.band_halfwidth, min_length=args.min_band_length,
+        min_discs=args.min_band_discs, min_dip=args.min_dip, max_flank_fraction=args.max_flank_fraction,
+        wall_margin=args.wall_margin, tip_tolerance=args.tip_tolerance, marker_window=args.marker_window,
+        bin_width=args.bin_width, weld_thickness=args.weld_thickness, gap=args.gap, flow_min=args.flow_min,
+        collapse_drop=args.collapse_drop, deformed_fraction=args.deformed_fraction)
+
+
+def _say_outcome(r: dict) -> None:
+    mn, w, f = r["salt"]["minimum"], r["salt"]["welds"], r["faults"]
+    disp = r["displacement_m"]
+    head = f"{disp:.0f} m" if disp is not None and np.isfinite(disp) else f"step {r['timestep']}"
+    thirds = r["cover_motion"]
+    ux = " / ".join(f"{thirds[k]['ux_m']:+.0f}" for k in ("left", "middle", "right")) if thirds else "-"
+    _say(f"  {head} (frame {r['frame']}): salt min {mn['thickness_m']:.0f} m at x = {mn['x_m'] / 1000:.2f} km, "
+         f"{w['count']} weld(s); {f['count']} cover fault(s) ({f['active']} active); "
+         f"cover ux thirds {ux} m; interface relief {r['interface']['relief_m'] or 0:.0f} m")
+
+
+def cmd_outcomes(args) -> dict:
+    from .outcomes import frame_outcomes, outcomes_markdown
+    paths = expand_paths(args.dumps)
+    materials = MaterialMap.parse(args.types)
+    opts = _outcome_options(args)
+    headers = scan_frames(paths)
+    if not headers:
+        raise DumpFormatError("no frames found")
+    disp, source = stage_displacements(args, paths, headers, materials)
+    stages = select_stages(args, disp, len(headers))
+    frames = read_stage_frames(args, paths, stages, [0])
+
+    def at(k):
+        return float(disp[k]) if k is not None else None
+    results = [frame_outcomes(frames[cur], frames[0], frames.get(prev), materials, opts, at(cur), at(prev))
+               for _, cur, prev in stages]
+    tips = ", ".join(f"{x:g}" for x in opts.fault_x) or "none"
+    notes = [f"Dumps: `{' '.join(args.dumps)}`; scene {opts.scene}; basement fault tips (initial x, m): {tips}; "
+             f"displacement {source}; incremental strain over {args.increment:g} m.",
+             f"Strong strain: max shear > max({opts.band_factor:g} x the cover's median, "
+             f"{opts.band_min_strain:g}); lengths in `outcomes.json` (`lengths_m`)."]
+    md = outcomes_markdown(results, args.title or "Outcomes", notes)
+    with open(_out(args, "outcomes.md"), "w", encoding="utf-8") as fh:
+        fh.write(md)
+    result = {"dumps": paths, "scene": opts.scene, "fault_x_m": list(opts.fault_x), "displacement_source": source,
+              "increment_m": args.increment, "options": asdict(opts), "frames": results}
+    write_json(_out(args, "outcomes.json"), result)
+    _say(f"{_out(args, 'outcomes.md')}: {len(results)} stage(s) ({source}), scene {opts.scene}")
+    for r in results:
+        _say_outcome(r)
+    return result
+
+
 # ------------------------------------------------------------------- parser
 
 def _parser() -> argparse.ArgumentParser:
@@ -315,7 +413,21 @@ def _parser() -> argparse.ArgumentParser:
     nb.add_argument("--method", choices=("radius", "delaunay"), default="radius", help="neighbour definition")
     nb.add_argument("--min-neighbours", type=int, default=3)
     fx = argparse.ArgumentParser(add_help=False)
-    fx.add_argument("--fault-x", type=float, help="x (m) separating footwall and hanging-wall basement discs")
+    fx.add_argument("--fault-x", type=float, nargs="+", metavar="X",
+                    help="x (m) separating footwall and hanging-wall basement discs; two for a keystone "
+                         "(the displacement is then the slip on the first fault)")
+    stages = argparse.ArgumentParser(add_help=False)
+    stages.add_argument("--at", type=float, nargs="+", default=list(DEFAULT_STAGES),
+                        help="fault displacements in m (default %(default)s)")
+    stages.add_argument("--frames", nargs="+", metavar="F", help="use these frames instead of --at")
+    stages.add_argument("--increment", type=float, default=DEFAULT_INCREMENT,
+                        help="displacement window of the incremental strain, m (default %(default)s)")
+    drive = stages.add_mutually_exclusive_group()
+    drive.add_argument("--disp-per-step", type=float,
+                       help="fault displacement per timestep (m); default: measure it from the basement")
+    drive.add_argument("--rate", type=float,
+                       help="drive rate (m/s): displacement = rate x (time - time of the first frame), "
+                            "from the dumps' ITEM: TIME")
 
     def add(name, func, parents, help_):
         s = sub.add_parser(name, parents=parents, help=help_, description=help_)
@@ -351,21 +463,53 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--bin-height", type=float, help="height of the averaging bins in m")
     s.add_argument("--viscosity", type=float, help="salt viscosity (Pa s), to report dp/dx")
 
-    s = add("figure", cmd_figure, [common, nb, fx],
+    s = add("figure", cmd_figure, [common, nb, fx, stages],
             "paper-style panels: markers beside incremental shear strain at chosen fault displacements")
-    s.add_argument("--at", type=float, nargs="+", default=list(DEFAULT_STAGES),
-                   help="fault displacements in m (default %(default)s)")
-    s.add_argument("--frames", nargs="+", metavar="F", help="show these frames instead of --at")
-    s.add_argument("--increment", type=float, default=DEFAULT_INCREMENT,
-                   help="displacement window of the incremental strain, m (default %(default)s)")
-    s.add_argument("--disp-per-step", type=float,
-                   help="fault displacement per timestep (m); default: measure it from the basement")
     s.add_argument("--strain-max", type=float, help="top of the strain colour scale (default: p99, rounded)")
     s.add_argument("--xlim", type=float, nargs=2, metavar=("X0", "X1"), help="x range in km")
     s.add_argument("--ylim", type=float, nargs=2, metavar=("Y0", "Y1"), help="y range in km")
     s.add_argument("--dpi", type=int, default=150)
     s.add_argument("--name", default="paper_figure.png", help="output file name")
     s.add_argument("--title")
+
+    s = add("outcomes", cmd_outcomes, [common, nb, fx, stages],
+            "the paper's statements per stage: salt thinning and welds, interface relief, cover faults "
+            "(dip, sense, throw), rigid-block motion, end walls, salt flow character")
+    s.add_argument("--scene", choices=("fault", "keystone", "tilted"), default="fault",
+                   help="Expt 1 (basement fault), Expt 2 (keystone: two --fault-x) or Expt 3 (tilted)")
+    s.add_argument("--downslope", choices=("right", "left"), default="right",
+                   help="tilted scene: the downslope direction, reference for synthetic/antithetic")
+    g = s.add_argument_group("cover faults (lengths in m; defaults in median cover-disc diameters d)")
+    g.add_argument("--band-factor", type=float, default=4.0,
+                   help="strong discs: max shear above this multiple of the cover's median (default %(default)s)")
+    g.add_argument("--band-min-strain", type=float, default=0.02,
+                   help="... and above this strain (default %(default)s)")
+    g.add_argument("--band-link", type=float, help="connect strong discs closer than this (default 2 d)")
+    g.add_argument("--band-halfwidth", type=float, help="band half-width around its line (default 2 d)")
+    g.add_argument("--min-band-length", type=float, help="shorter bands are not faults (default 6 d)")
+    g.add_argument("--min-band-discs", type=int, default=8, help="fewer discs are not a band (default %(default)s)")
+    g.add_argument("--min-dip", type=float, default=20.0,
+                   help="flatter bands are not faults, degrees (default %(default)s)")
+    g.add_argument("--max-flank-fraction", type=float, default=0.5,
+                   help="bands whose flanks have this fraction of strong discs are distributed "
+                        "deformation, not faults (default %(default)s)")
+    g.add_argument("--wall-margin", type=float, help="ignore strong discs this close to an end wall (default 3 d)")
+    g.add_argument("--tip-tolerance", type=float,
+                   help="a band ending this close to the surface / interface reaches it (default 3 d)")
+    g.add_argument("--marker-window", type=float,
+                   help="width of the strips beside a fault for throw and interface step (default 5 d)")
+    g = s.add_argument_group("salt, walls, scenes")
+    g.add_argument("--bin-width", type=float, help="thickness columns, m (default two median disc diameters)")
+    g.add_argument("--weld-thickness", type=float, help="weld threshold, m (default one salt disc diameter)")
+    g.add_argument("--gap", type=float, help="pores shorter than this (m) count as salt")
+    g.add_argument("--flow-min", type=float,
+                   help="salt-band offsets below this are no flow, m (default one salt disc diameter)")
+    g.add_argument("--collapse-drop", type=float,
+                   help="cover-edge subsidence relative to the wall that counts as collapse, m (default 2 d)")
+    g.add_argument("--deformed-fraction", type=float, default=0.1,
+                   help="keystone: a column is deformed when this fraction of its cover is strong "
+                        "(default %(default)s)")
+    s.add_argument("--title", help="heading of outcomes.md")
     return p
 
 

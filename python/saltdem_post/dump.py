@@ -491,11 +491,13 @@ def _format_column(col: np.ndarray) -> List[str]:
 
 
 def write_dump(path_or_file, frames: Iterable[Frame], append: bool = False) -> None:
-    """Write frames in LAMMPS ``dump custom`` text format (gzip if ``*.gz``)."""
+    """Write frames in LAMMPS ``dump custom`` text format (gzip if ``*.gz``);
+    frames with a ``time`` get an ``ITEM: TIME`` block."""
     def emit(fh):
         for fr in frames:
             cols = list(fr.data)
-            lines = [f"ITEM: TIMESTEP\n{fr.timestep}", f"ITEM: NUMBER OF ATOMS\n{fr.natoms}",
+            time = [] if fr.time is None else [f"ITEM: TIME\n{float(fr.time)!r}"]   # as dump_modify time yes
+            lines = [*time, f"ITEM: TIMESTEP\n{fr.timestep}", f"ITEM: NUMBER OF ATOMS\n{fr.natoms}",
                      *fr.box.header_lines(), "ITEM: ATOMS " + " ".join(cols)]
             fh.write("\n".join(lines) + "\n")
             text = [_format_column(fr.data[c]) for c in cols]

@@ -10,7 +10,7 @@ flow in the salt) so velocities and displacements are known exactly.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import List, Sequence
+from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -105,6 +105,37 @@ def scene_frames(slips: Sequence[float], spec: SceneSpec = SceneSpec(), shuffle:
         frame.index = k
         frames.append(frame)
     return frames
+
+
+def displaced(frame: Frame, mask: np.ndarray, u, timestep: Optional[int] = None) -> Frame:
+    """A copy of ``frame`` with the discs of ``mask`` moved by ``u`` (a 2-vector or N x 2)."""
+    data = dict(frame.data)
+    u = np.broadcast_to(np.asarray(u, float), (int(np.count_nonzero(mask)), 2))
+    for axis, name in enumerate("xy"):
+        col = frame.data[name].astype(float).copy()
+        col[mask] += u[:, axis]
+        data[name] = col
+    return Frame(frame.timestep if timestep is None else timestep, frame.box, data, frame.path, frame.index,
+                 frame.time)
+
+
+def planted_cover_fault(spec: SceneSpec, x_interface: float, dip: float, throw: float,
+                        direction: str = "right") -> Tuple[Frame, Frame]:
+    """The reference scene and a copy in which a planar cover fault has
+    slipped: the fault meets the salt-cover interface at ``x_interface``,
+    dips ``dip`` degrees towards ``direction`` (right: +x), and its
+    hanging-wall cover has moved down-dip by ``throw / sin(dip)`` (salt and
+    basement stay).  The fault's surface trace is at
+    ``x_interface -/+ cover_thickness / tan(dip)``."""
+    ref = reference_scene(spec)
+    a = np.radians(dip)
+    sign = 1.0 if direction == "right" else -1.0
+    plane_x = x_interface - sign * (ref.y - spec.salt_top) / np.tan(a)
+    hanging = (ref["type"] == COVER) & (sign * (ref.x - plane_x) > 0)
+    slip = throw / np.sin(a)
+    cur = displaced(ref, hanging, slip * np.array([sign * np.cos(a), -np.sin(a)]), timestep=1000)
+    cur.index = 1
+    return ref, cur
 
 
 def write_fixture(path: str, slips: Sequence[float] = (0.0, 50.0, 100.0, 150.0),

@@ -1,53 +1,86 @@
 #!/usr/bin/env bash
-# Run a series of the paper's scenes, each in its own directory, and render its figure.
+# Run a series of the paper's scenes, each in its own directory, with its figure and outcomes.
 #
 #   examples/run-series.sh SERIES [PRESET] [-- extra lmp arguments, e.g. -sf omp -pk omp 4]
 #
-#   expts   Expts 1-3 at the standard rate (paper Figs. 3-5)
-#   fig6    Expts 1-3 at the 5x lower rate (paper Fig. 6): 0.00002 m per 0.002 s step
-#   fig7    Expt 1 geometry with a 65 degree fault and salt 1000, 500, 250 m (paper Fig. 7;
-#           the cover keeps its 1750 m)
-# PRESET: full (default: the paper's resolution, days of CPU per run), quick (minutes), tiny.
-# Output: out/SERIES_PRESET/NAME/ with the frames, log and figures/NAME.png.
-# LMP (default build/lmp) and MPIRUN (e.g. "mpirun -np 8") choose how lmp runs.
+#   expts    Expts 1-3 at the standard rate (paper Figs. 3-5)
+#   fig6     Expts 1-3 at the 5x lower rate of Fig. 6 (0.01 m/s instead of 0.05 m/s)
+#   fig7     Expt 1 geometry with a 65 degree fault and salt 1000, 500, 250 m (paper Fig. 7;
+#            the cover keeps its 1750 m)
+#   seeds    Expt 1 with three more packing seeds (what is robust, what is one packing's)
+#   study    quick Expt 1 changing one assumption at a time (docs/scenes.md)
+#   gallery  everything docs/gallery.md shows: at quick expts, fig6, fig7 and seeds; at
+#            medium Expt 1, Expt 3 and fig7
+# PRESET: full (default: the paper's resolution), medium, quick, tiny.  Every run goes to the
+# paper's 1000 m at the paper's physics (examples/scene/params.in).
+# Output: out/SERIES_PRESET/NAME/ with the frames, log, figures/NAME.png, outcomes/outcomes.md
+# and wall.txt.  A finished run (its 'done' file) is skipped; an interrupted one resumes from
+# the newer of its restart files.  LMP (default build/lmp) and MPIRUN (e.g. "mpirun -np 8")
+# choose how lmp runs; ONLY=NAME runs one run of the series.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-series=${1:?usage: examples/run-series.sh expts|fig6|fig7 [full|quick|tiny] [-- lmp args]}
+series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|gallery [full|medium|quick|tiny] [-- lmp args]}
 preset=${2:-full}
 shift $(( $# >= 2 ? 2 : 1 ))
 [ "${1:-}" = "--" ] && shift
 lmp=${LMP:-$root/build/lmp}
 py=${SALTDEM_PYTHON:-/usr/bin/python3}
-
-# the low rate of Fig. 6 is 1/5 of the preset's standard displacement per step
-case $preset in
-  full) dstep=0.0001 ;; quick) dstep=0.00125 ;; tiny) dstep=0.01 ;;
-  *) echo "run-series: preset '$preset' must be full, quick or tiny" >&2; exit 2 ;;
+case $preset in full|medium|quick|tiny) ;;
+  *) echo "run-series: preset '$preset' must be full, medium, quick or tiny" >&2; exit 2 ;;
 esac
-slow=$(awk "BEGIN{print $dstep/5}")
 
+# name deck rate(m/s) [lmp -var arguments]
+expts=("expt1 expt1 0.05" "expt2 expt2 0.05" "expt3 expt3 0.05")
+fig6=("expt1_slow expt1 0.01" "expt2_slow expt2 0.01" "expt3_slow expt3 0.01")
+fig7=("fig7_salt1000 expt1 0.05 -var dip 65 -var salt 1000"
+      "fig7_salt500 expt1 0.05 -var dip 65 -var salt 500"
+      "fig7_salt250 expt1 0.05 -var dip 65 -var salt 250")
+seeds=("expt1_seed2 expt1 0.05 -var seed 2" "expt1_seed3 expt1 0.05 -var seed 3"
+       "expt1_seed4 expt1 0.05 -var seed 4")
+study=("base expt1 0.05" "endwall_smooth expt1 0.05 -var endwall smooth"
+       "endwall_bonded expt1 0.05 -var endwall bonded" "rightwall_fixed expt1 0.05 -var rightwall fixed"
+       "eta10x expt1 0.05 -var eta 5e9 -var S 40" "eta100x expt1 0.05 -var eta 5e10 -var S 400"
+       "eta1000x expt1 0.05 -var eta 5e11 -var S 4000"
+       "salt_contact expt1 0.05 -var saltlaw contact -var csalt_cal 0.5"
+       "frame_damping expt1 0.05 -var eta 5e6 -var damping 5e4")
 runs=()
 case $series in
-  expts) runs=("expt1 expt1" "expt2 expt2" "expt3 expt3") ;;
-  fig6)  runs=("expt1_slow expt1 -var dstep $slow" "expt2_slow expt2 -var dstep $slow"
-               "expt3_slow expt3 -var dstep $slow") ;;
-  fig7)  runs=("fig7_salt1000 expt1 -var dip 65 -var salt 1000"
-               "fig7_salt500 expt1 -var dip 65 -var salt 500"
-               "fig7_salt250 expt1 -var dip 65 -var salt 250") ;;
-  *) echo "run-series: series '$series' must be expts, fig6 or fig7" >&2; exit 2 ;;
+  expts) runs=("${expts[@]}") ;;
+  fig6)  runs=("${fig6[@]}") ;;
+  fig7)  runs=("${fig7[@]}") ;;
+  seeds) runs=("${seeds[@]}") ;;
+  study) runs=("${study[@]}") ;;
+  gallery)
+    if [ "$preset" = medium ]; then runs=("expt1 expt1 0.05" "expt3 expt3 0.05" "${fig7[@]}")
+    else runs=("${expts[@]}" "${fig6[@]}" "${fig7[@]}" "${seeds[@]}"); fi ;;
+  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study or gallery" >&2; exit 2 ;;
 esac
 
 for r in "${runs[@]}"; do
-  read -r name deck vars <<< "$r"
+  read -r name deck rate vars <<< "$r"
+  [ -n "${ONLY:-}" ] && [ "$ONLY" != "$name" ] && continue
   out="$root/out/${series}_${preset}/$name"
+  if [ -f "$out/done" ]; then echo "run-series: $name done already ($out)"; continue; fi
   mkdir -p "$out"
-  echo "run-series: $name ($deck.in $vars) in $out"
+  resume=()
+  newest=$(cd "$out" && ls -t "$deck".restart.a "$deck".restart.b 2>/dev/null | head -1 || true)
+  [ -n "$newest" ] && resume=(-var restart "$newest")
+  echo "run-series: $name ($deck.in -var rate $rate $vars ${resume[*]}) in $out"
+  start=$(date +%s)
+  seg=$(( $(cat "$out/wall_segments.txt" 2>/dev/null | wc -l) + 1 ))    # log.lammps, log.2.lammps, ...
+  log=log.lammps; [ "$seg" -gt 1 ] && log=log.$seg.lammps
   # shellcheck disable=SC2086
   (cd "$out" && ${MPIRUN:-} "$lmp" -in "$root/examples/$deck.in" -var root "$root" \
-      -var preset "$preset" $vars -log log.lammps "$@" > stdout.txt)
-  dstep_run=$(grep -o 'dstep [0-9.e-]*' <<< "$vars" | awk '{print $2}' || true)
+      -var preset "$preset" -var rate "$rate" $vars "${resume[@]}" -log "$log" "$@" > stdout.$seg.txt)
+  echo "$(( $(date +%s) - start ))" >> "$out/wall_segments.txt"
+  faults=(--fault-x 3125); [ "$deck" = expt2 ] && faults=(--fault-x 5000 7500)
+  [ "$deck" = expt3 ] && faults=()
+  scene=fault; [ "$deck" = expt2 ] && scene=keystone; [ "$deck" = expt3 ] && scene=tilted
   "$py" "$root/python/saltdem-post" figure "$out/dump.$deck.*.txt" -o "$out/figures" \
-      --name "$name.png" --title "$name ($preset)" --disp-per-step "${dstep_run:-$dstep}" -q \
-      $( [ "$preset" = full ] || echo --at $(grep -o 'frame at displacement [0-9.]*' "$out/stdout.txt" | awk '{printf "%s ", $4}') )
-  echo "run-series: figure $out/figures/$name.png"
+      --name "$name.png" --title "$name ($preset, $rate m/s)" --rate "$rate" "${faults[@]}" -q
+  "$py" "$root/python/saltdem-post" outcomes "$out/dump.$deck.*.txt" -o "$out/outcomes" \
+      --rate "$rate" "${faults[@]}" --scene "$scene" -q
+  awk '{s += $1} END {print s}' "$out/wall_segments.txt" > "$out/wall.txt"
+  touch "$out/done"
+  echo "run-series: $name: figure $out/figures/$name.png, outcomes $out/outcomes/outcomes.md"
 done

@@ -13,6 +13,8 @@
 
 #include "fix_saltdem_motion.h"
 
+#include "saltdem_check.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -21,13 +23,15 @@
 #include "timer.h"
 #include "update.h"
 
+#include <cfloat>
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), ended(0), disp(0.0)
+    Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), ended(0), disp(0.0), warned(0)
 {
   if (domain->dimension != 2) error->all(FLERR, "Fix {} requires dimension 2", style);
   time_integrate = 1;
@@ -44,9 +48,9 @@ void FixSaltdemMotion::parse(int narg, char **arg)
       utils::missing_cmd_args(FLERR, fmt::format("fix {} {}", style, arg[iarg]), error);
     const std::string kw = arg[iarg], val = arg[iarg + 1];
     if (kw == "rate")
-      rate = utils::numeric(FLERR, val, false, lmp);
+      rate = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: rate", style), lmp);
     else if (kw == "target")
-      target = utils::numeric(FLERR, val, false, lmp);
+      target = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: target", style), lmp);
     else if (kw == "at_target") {
       if (val == "stop") end_run = 0;
       else if (val == "end") end_run = 1;
@@ -62,7 +66,7 @@ void FixSaltdemMotion::parse(int narg, char **arg)
 
 double FixSaltdemMotion::angle_arg(const std::string &kw, const std::string &val)
 {
-  const double a = utils::numeric(FLERR, val, false, lmp);
+  const double a = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: {}", style, kw), lmp);
   if (a <= 0.0 || a >= 90.0)
     error->all(FLERR, "Fix {}: {} = {} must be in (0, 90) degrees; usage: {}", style, kw, a, usage);
   return a;
@@ -87,6 +91,34 @@ void FixSaltdemMotion::init()
   for (const auto &b : blocks)
     if (b.igroup >= 0 && group->count(b.igroup) == 0)
       error->all(FLERR, "Fix {} {}: block group {} has no atoms", style, id, group->names[b.igroup]);
+
+  // the step of the drive, here since the time step may change after the fix is defined
+  const double step = rate * update->dt;
+  if (!std::isfinite(step) || step > target)
+    error->all(FLERR,
+               "Fix {} {}: one time step moves the blocks by rate x dt = {} x {} = {} m, beyond "
+               "the target {} m: the whole motion would happen in a single jump. Lower the rate "
+               "or the time step", style, id, rate, update->dt, step, target);
+
+  // the walls jump through discs when a step moves a block by a good part of the smallest
+  // radius of the scene (the fastest block: the right block of a keystone moves at 2 cos D)
+  double speed = 0.0;
+  for (const auto &b : blocks)
+    speed = MAX(speed, sqrt(b.vel[0] * b.vel[0] + b.vel[1] * b.vel[1] + b.vel[2] * b.vel[2]));
+  double rmin = DBL_MAX, rminall;
+  if (atom->radius_flag)
+    for (int i = 0; i < atom->nlocal; i++)
+      if (atom->radius[i] > 0.0) rmin = MIN(rmin, atom->radius[i]);
+  MPI_Allreduce(&rmin, &rminall, 1, MPI_DOUBLE, MPI_MIN, world);
+  if (!warned && rminall < DBL_MAX && speed * step > JUMP_FRACTION * rminall) {
+    warned = 1;
+    if (comm->me == 0)
+      error->warning(FLERR,
+                     "Fix {} {}: one time step moves a block by {:.4g} m (rate x dt = {:.4g} x "
+                     "{:.4g} at {:.3g} x the rate), more than {} of the smallest disc radius "
+                     "{:.4g} m: the walls jump through discs. Lower the rate or the time step",
+                     style, id, speed * step, rate, update->dt, speed, JUMP_FRACTION, rminall);
+  }
 }
 
 void FixSaltdemMotion::set_velocity(double speed)

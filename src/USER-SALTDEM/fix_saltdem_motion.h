@@ -42,6 +42,9 @@ class FixSaltdemMotion : public Fix {
   int end_run;      // 1: end the run when the target is reached
   int ended;        // 1: this fix ended the current run (post_run lets the next one go)
   double disp;      // drive displacement so far (m), kept in restart files
+  int warned;       // the warning that a step moves a block by much of a disc radius was given
+  // a step that moves a block by more than this fraction of the smallest disc radius warns
+  static constexpr double JUMP_FRACTION = 0.1;
   std::string usage;
 
   // parse the keywords shared by all motion fixes and call parse_keyword() for the

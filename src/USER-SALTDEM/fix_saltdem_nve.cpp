@@ -13,6 +13,8 @@
 
 #include "fix_saltdem_nve.h"
 
+#include "saltdem_check.h"
+
 #include "atom.h"
 #include "domain.h"
 #include "error.h"
@@ -36,7 +38,7 @@ FixSaltdemNVE::FixSaltdemNVE(LAMMPS *lmp, int narg, char **arg) :
   while (iarg < narg) {
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, fmt::format("fix saltdem/nve {}", arg[iarg]), error);
     if (strcmp(arg[iarg], "inertia") == 0) {
-      inertia = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      inertia = SaltDEM::numeric(FLERR, arg[iarg + 1], "Fix saltdem/nve: inertia", lmp);
       if (inertia < 1.0)
         error->all(FLERR, "Fix saltdem/nve: inertia {} must be >= 1 (1 = true inertia)", inertia);
     } else if (strcmp(arg[iarg], "check") == 0) {

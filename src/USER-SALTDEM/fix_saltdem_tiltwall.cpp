@@ -12,6 +12,8 @@
 
 #include "fix_saltdem_tiltwall.h"
 
+#include "saltdem_check.h"
+
 #include "error.h"
 #include "group.h"
 #include "modify.h"
@@ -52,7 +54,7 @@ int FixSaltdemTiltwall::parse_keyword(const std::string &kw, const std::string &
   } else if (kw == "gravity")
     igravity = group_arg(kw, val);
   else if (kw == "g")
-    g = utils::numeric(FLERR, val, false, lmp);
+    g = SaltDEM::numeric(FLERR, val.c_str(), "Fix saltdem/tiltwall: g", lmp);
   else
     return 0;
   return 1;

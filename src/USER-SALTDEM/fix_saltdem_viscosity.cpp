@@ -11,6 +11,8 @@
 
 #include "fix_saltdem_viscosity.h"
 
+#include "saltdem_check.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
@@ -21,6 +23,7 @@
 #include <vector>
 #include "update.h"
 
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -38,7 +41,7 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   if (strcmp(arg[3], "lambda") != 0)
     error->all(FLERR, "Fix saltdem/viscosity: expected 'lambda' after the style, got '{}'; usage: {}",
                arg[3], usage);
-  lambda = utils::numeric(FLERR, arg[4], false, lmp);
+  lambda = SaltDEM::numeric(FLERR, arg[4], "Fix saltdem/viscosity: lambda", lmp);
   if (lambda <= 0.0) error->all(FLERR, "Fix saltdem/viscosity: lambda = {} must be > 0", lambda);
 
   int iarg = 5;
@@ -46,7 +49,8 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
     if (iarg + 2 > narg)
       utils::missing_cmd_args(FLERR, fmt::format("fix saltdem/viscosity {}", arg[iarg]), error);
     const std::string kw = arg[iarg];
-    const double v = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    const double v =
+        SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Fix saltdem/viscosity: {}", kw), lmp);
     auto positive = [&](double x) {
       if (x <= 0.0) error->all(FLERR, "Fix saltdem/viscosity: {} = {} must be > 0", kw, x);
       return x;
@@ -74,6 +78,20 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                  usage);
   if (eta_natural > 0.0) eta_model = eta_natural / lambda;
   else eta_natural = eta_model * lambda;
+  // the derived viscosities go to the pair style (its bounds) and the reported numbers must be
+  // finite
+  if (!SaltDEM::in_bounds(eta_model) || !SaltDEM::in_bounds(eta_natural))
+    error->all(FLERR, "Fix saltdem/viscosity: lambda = {} gives a model viscosity {} and a natural "
+               "one {} Pa s beyond the bounds of SaltDEM coefficients [{:g}, {:g}]; check lambda "
+               "and the viscosity given", lambda, eta_model, eta_natural, SaltDEM::MIN_VALUE,
+               SaltDEM::MAX_VALUE);
+  for (double q : {reynolds_model(), density * (rate / lambda) * length / eta_natural,
+                   rate / length, rate / (lambda * length), lambda / YEAR})
+    if (!std::isfinite(q) || q == 0.0)
+      error->all(FLERR, "Fix saltdem/viscosity: the Reynolds numbers, strain rates and time scale "
+                 "from lambda = {}, rate = {}, length = {}, density = {}, inertia = {} and the "
+                 "viscosity {} Pa s overflow or vanish ({}); use values of physical size",
+                 lambda, rate, length, density, inertia, eta_model, q);
 
   // set the viscosity of the salt's pair style now, so that the next run
   // (and its stable time step check) uses it: every saltdem/viscous sub-style of a hybrid

@@ -12,6 +12,7 @@
 #include "neighbor.h"
 
 #include <cfloat>
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -21,7 +22,8 @@ using namespace LAMMPS_NS;
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
     Pair(lmp), name(style_name), hist_id(history_id), fix_history(nullptr), fix_rebuild(nullptr),
     transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr),
-    reach_abs(nullptr), dtfactor(0.2), tbounds_built(-1), tbounds_inum(-1)
+    reach_abs(nullptr), dtfactor(0.2), tbounds_built(-1), tbounds_inum(-1), recheck(false),
+    masses_cached(false)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;
@@ -136,25 +138,102 @@ void PairSaltdem::init_style()
     onerad[atom->type[i]] = MAX(onerad[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(&onerad[1], &maxrad[1], n, MPI_DOUBLE, MPI_MAX, world);
 
-  // the time step must be stable for the law and the lightest particles
-  std::string why;
-  const double dtmax = stable_limit(why);
-  if (dtmax > 0.0 && update->dt > dtmax)
-    error->all(FLERR,
-               "Pair style {}: timestep {:.6g} exceeds the stable limit {:.6g} set by {}. "
-               "Use 'timestep {:.3g}' or smaller, or change the parameter named",
-               name, update->dt, dtmax, why, 0.99 * dtmax);
-  // the stability margin belongs in every run's log
-  if (dtmax > 0.0 && comm->me == 0)
-    utils::logmesg(lmp, "Pair style {}: timestep {:.6g} = {:.3g} of the stable limit {:.6g} ({})\n",
-                   name, update->dt, update->dt / dtmax, dtmax, why);
+  // the time step must be stable for the laws of every SaltDEM style and the lightest
+  // particles; the stability margin of this style belongs in every run's log
+  const auto limits = check_timestep("");
+  for (const auto &l : limits)
+    if (l.pair == this && !l.why.empty() && comm->me == 0)
+      utils::logmesg(lmp, "Pair style {}: timestep {:.6g} = {:.3g} of the stable limit {:.6g} ({})\n",
+                     name, update->dt, update->dt / l.dt, l.dt, l.why);
 }
 
-double PairSaltdem::stable_limit(std::string &why)
+double PairSaltdem::stable_limit(std::string &why, bool cached)
 {
-  std::vector<double> mmin(atom->ntypes + 1);
-  min_inertial_mass(mmin.data());
-  return stable_dt(mmin.data(), why);
+  why.clear();
+  if (!allocated) return 0.0;    // no coefficients yet
+  const bool reuse = cached && (int) mmin_cache.size() == atom->ntypes + 1;
+  if (!reuse) {
+    mmin_cache.assign(atom->ntypes + 1, -1.0);
+    min_inertial_mass(mmin_cache.data());
+  }
+  masses_cached = reuse;
+  const double lim = stable_dt(mmin_cache.data(), why);
+  masses_cached = false;
+  return why.empty() ? 0.0 : lim;
+}
+
+/* every SaltDEM pair style present: pair_match() returns the n-th matching sub-style of a
+   hybrid, the only one again past the last (or nullptr past the last of several) */
+
+std::vector<PairSaltdem *> PairSaltdem::saltdem_styles(LAMMPS *lmp)
+{
+  std::vector<PairSaltdem *> styles;
+  for (int n = 1;; n++) {
+    auto pair = dynamic_cast<PairSaltdem *>(lmp->force->pair_match("saltdem/", 0, n));
+    if (!pair || (!styles.empty() && pair == styles.back())) break;
+    styles.push_back(pair);
+  }
+  return styles;
+}
+
+PairSaltdem::Limit PairSaltdem::smallest_limit(LAMMPS *lmp, const std::string &who,
+                                               std::vector<Limit> *each, bool cached)
+{
+  Limit best{nullptr, 0.0, ""};
+  for (auto pair : saltdem_styles(lmp)) {
+    // (before the run's init_style: saltdem/timestep)
+    if (!lmp->atom->radius_flag || !lmp->atom->rmass_flag)
+      lmp->error->all(FLERR, "{}Pair style {} requires per-atom radius and mass: use 'atom_style "
+                      "sphere'", who, pair->name);
+    Limit l{pair, 0.0, ""};
+    l.dt = pair->stable_limit(l.why, cached);
+    if (!l.why.empty() && !(l.dt > 0.0 && std::isfinite(l.dt)))
+      lmp->error->all(FLERR,
+                      "{}Pair style {}: the stable time step limit is {} (not a finite positive "
+                      "number), set by {}: a coefficient, inertia factor or disc mass of that "
+                      "size is out of range; change the parameter named (or the masses, 'set ... "
+                      "density/disc')",
+                      who, pair->name, l.dt, l.why);
+    if (!l.why.empty() && (!best.pair || l.dt < best.dt)) best = l;
+    if (each) each->push_back(l);
+  }
+  return best;
+}
+
+std::vector<PairSaltdem::Limit> PairSaltdem::check_timestep(const std::string &when)
+{
+  std::vector<Limit> all;
+  const Limit best = smallest_limit(lmp, when.empty() ? "" : "After a change during the run: ",
+                                    &all, !when.empty());
+  for (auto &l : all) l.pair->limits_checked();
+  if (best.pair && update->dt > best.dt) {
+    // under pair hybrid: the limit of each SaltDEM sub-style, so that the dt asked for is the
+    // one every sub-style accepts
+    std::string others;
+    if (all.size() > 1) {
+      others = " (the limits of the SaltDEM sub-styles:";
+      for (const auto &l : all)
+        others += l.why.empty() ? fmt::format(" {} none;", l.pair->name)
+                                : fmt::format(" {} {:.6g} s;", l.pair->name, l.dt);
+      others.back() = ')';
+    }
+    error->all(FLERR,
+               "Pair style {}: {}timestep {:.6g} exceeds the stable limit {:.6g} set by {}{}. "
+               "Use 'timestep {:.3g}' or smaller, or change the parameter named",
+               best.pair->name, when, update->dt, best.dt, best.why, others, 0.99 * best.dt);
+  }
+  return all;
+}
+
+/* a coefficient changed during the run (recheck set by init_one through reinit()): the same
+   check, on the masses of the check at the start of the run (no communication) */
+
+void PairSaltdem::recheck_timestep()
+{
+  if (!recheck) return;
+  recheck = false;
+  check_timestep(fmt::format("at step {}, after {} changed during the run, the ",
+                             update->ntimestep, recheck_what));
 }
 
 /* smallest mass per type that the integrator sees: rmass times the inertia

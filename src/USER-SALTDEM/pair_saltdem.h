@@ -25,6 +25,7 @@
 #include "update.h"
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -47,9 +48,27 @@ class PairSaltdem : public Pair {
   virtual double *loop_sum(int /*tid*/, int /*nthreads*/) { return nullptr; }
   virtual void post_loop(int /*nthreads*/) {}
   // the largest stable time step for the present atoms, coefficients and integrators, and
-  // what sets it (0: nothing limits it); read by init_style() and by saltdem/timestep
-  double stable_limit(std::string &why);
+  // what sets it.  Nothing limits it (no integrated atoms of its types, no coefficients):
+  // `why` is left empty and the return is 0.  A limit that is not a finite positive number
+  // (a coefficient or mass out of range) is returned as it is, with its reason.  cached: the
+  // smallest inertial masses of the last call (no loop over the atoms, no communication;
+  // for the re-check during a run, when a coefficient changed)
+  double stable_limit(std::string &why, bool cached = false);
   const char *name_of() const { return name; }
+
+  // the stable limit of every SaltDEM pair style present (the pair style, or the SaltDEM
+  // sub-styles of pair hybrid, in their order), and the smallest of them (pair nullptr: nothing
+  // limits the time step).  A limit that is not a finite positive number stops the run with an
+  // error naming the style and what sets it (`who`: the command asking, for that message).
+  // Used by the styles' time step check and by saltdem/timestep.
+  struct Limit {
+    PairSaltdem *pair;
+    double dt;
+    std::string why;
+  };
+  static std::vector<PairSaltdem *> saltdem_styles(class LAMMPS *lmp);
+  static Limit smallest_limit(class LAMMPS *lmp, const std::string &who,
+                              std::vector<Limit> *each = nullptr, bool cached = false);
 
   // what a law returns: the discs touch (history kept), the law made torques
   enum { LAW_TOUCH = 1, LAW_TORQUE = 2 };
@@ -104,6 +123,7 @@ class PairSaltdem : public Pair {
   // the serial compute() of a derived style: pre_loop(), the loop over all pairs, post_loop()
   template <class Derived> void compute_serial(Derived *self, int eflag, int vflag)
   {
+    recheck_timestep();
     ev_init(eflag, vflag);
     pre_loop();
     auto tally = [this](int i, int j, double e, double fx, double fy, double fz, double dx,
@@ -137,7 +157,7 @@ class PairSaltdem : public Pair {
   virtual double range(int i, int j) const = 0;   // interaction range beyond contact
   virtual double range_abs(int, int) const { return 0.0; }    // range between centres
   // the largest stable dt given the smallest inertial mass per type (DBL_MAX:
-  // walls only, -1: no atoms); returns 0 if nothing limits it
+  // walls only, -1: no atoms), through consider_limit(); `why` stays empty if nothing limits it
   virtual double stable_dt(const double *mmin, std::string &why) = 0;
   void min_inertial_mass(double *mmin);
   double inertia_scale(int i);
@@ -150,6 +170,34 @@ class PairSaltdem : public Pair {
   void read_restart_format(FILE *fp);
   void check_types(int narg, char **arg, int nmin, const char *usage, int &ilo, int &ihi,
                    int &jlo, int &jhi);
+
+  // the time step check: the smallest limit of all SaltDEM pair styles present (the message
+  // names the style and the parameter that set it, and the limits of the others); `when`
+  // prefixes the message (a re-check during a run).  Returns the limits of every style.
+  std::vector<Limit> check_timestep(const std::string &when);
+  // a coefficient the limit depends on changed during a run (e.g. fix adapt, through
+  // extract() and reinit(), which calls init_one()): the next compute() checks again
+  bool recheck;
+  std::string recheck_what;    // what changed, for the message
+  void recheck_timestep();
+  // called on every SaltDEM style once its limit has been checked (it records the values
+  // checked, against which a change during the run is detected)
+  virtual void limits_checked() { recheck = false; }
+  // keep the smaller limit: best/why hold the smallest so far (why empty: none yet); a limit
+  // that is not a finite positive number is kept in preference (the check stops on it)
+  template <class Reason> static void consider_limit(double lim, double &best, std::string &why,
+                                                     Reason &&reason)
+  {
+    auto bad = [](double v) { return !(v > 0.0) || !std::isfinite(v); };
+    if (!why.empty() && bad(best)) return;
+    if (why.empty() || bad(lim) || lim < best) {
+      best = lim;
+      why = reason();
+    }
+  }
+  bool masses_cached;                  // stable_dt(): the call reuses the masses of the last one
+  std::vector<double> mmin_cache;      // min_inertial_mass() of the last full stable_limit()
+  // (the last two: set by stable_limit() for stable_dt())
 };
 
 template <class Derived, int EVFLAG, int DIM, class Tally>

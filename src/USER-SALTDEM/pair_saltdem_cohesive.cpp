@@ -8,12 +8,15 @@
 
 #include "pair_saltdem_cohesive.h"
 
+#include "saltdem_check.h"
+
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "memory.h"
 
 #include <cfloat>
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -53,7 +56,7 @@ void PairSaltdemCohesive::settings(int narg, char **arg)
   while (iarg < narg) {
     if (strcmp(arg[iarg], "dtfactor") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style saltdem/cohesive dtfactor", error);
-      dtfactor = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      dtfactor = SaltDEM::numeric(FLERR, arg[iarg + 1], "Pair style saltdem/cohesive: dtfactor", lmp);
       if (dtfactor <= 0.0 || dtfactor > 0.8)
         error->all(FLERR, "Pair style saltdem/cohesive: dtfactor {} must be in (0, 0.8]", dtfactor);
       iarg += 2;
@@ -73,12 +76,15 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
   check_types(narg, arg, 8, usage, ilo, ihi, jlo, jhi);
 
   SaltDEM::CohesiveParams p{};
-  p.kn = utils::numeric(FLERR, arg[2], false, lmp);
-  p.kt = utils::numeric(FLERR, arg[3], false, lmp);
-  p.mu = utils::numeric(FLERR, arg[4], false, lmp);
-  p.coh = utils::numeric(FLERR, arg[5], false, lmp);
-  p.tens = utils::numeric(FLERR, arg[6], false, lmp);
-  p.range = utils::numeric(FLERR, arg[7], false, lmp);
+  auto value = [&](const char *str, const char *what) {
+    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style saltdem/cohesive: {}", what), lmp);
+  };
+  p.kn = value(arg[2], "kn");
+  p.kt = value(arg[3], "kt");
+  p.mu = value(arg[4], "mu");
+  p.coh = value(arg[5], "cohesion");
+  p.tens = value(arg[6], "tensile");
+  p.range = value(arg[7], "range");
 
   auto positive = [&](double v, const char *name, bool strict) {
     if (v < 0.0 || (strict && v == 0.0))
@@ -96,16 +102,16 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
   while (iarg < narg) {
     if (strcmp(arg[iarg], "damp") == 0) {
       if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_coeff saltdem/cohesive damp", error);
-      p.zeta_n = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      p.zeta_t = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      p.zeta_n = value(arg[iarg + 1], "damp zeta_n");
+      p.zeta_t = value(arg[iarg + 2], "damp zeta_t");
       if (p.zeta_n < 0.0 || p.zeta_n >= 1.0 || p.zeta_t < 0.0 || p.zeta_t >= 1.0)
         error->all(FLERR, "Pair style saltdem/cohesive: damping ratios {} {} must be in [0, 1)",
                    p.zeta_n, p.zeta_t);
       iarg += 3;
     } else if (strcmp(arg[iarg], "rolling") == 0) {
       if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_coeff saltdem/cohesive rolling", error);
-      p.kr = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      p.mur = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      p.kr = value(arg[iarg + 1], "rolling kr");
+      p.mur = value(arg[iarg + 2], "rolling mu_r");
       positive(p.kr, "rolling kr", false);
       positive(p.mur, "rolling mu_r", false);
       iarg += 3;
@@ -120,6 +126,10 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
                p.range, p.tens / p.kn);
 
   SaltDEM::cohesive_derive(p);
+  if (!std::isfinite(p.cn) || !std::isfinite(p.ct))
+    error->all(FLERR, "Pair style saltdem/cohesive: the damping coefficients 2 zeta sqrt(k) = {} "
+               "{} from kn = {}, kt = {} and damp {} {} are not finite", p.cn, p.ct, p.kn, p.kt,
+               p.zeta_n, p.zeta_t);
   int count = 0;
   for (int i = ilo; i <= ihi; i++)
     for (int j = MAX(jlo, i); j <= jhi; j++) {
@@ -187,7 +197,7 @@ void PairSaltdemCohesive::init_style()
 double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
 {
   const double rot = (domain->dimension == 2) ? 3.0 : 3.5;
-  double best = DBL_MAX;
+  double best = 0.0;
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       if (!setflag[i][j]) {
@@ -200,16 +210,14 @@ double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
       const double m = MIN(mmin[i], mmin[j]);
       const bool tang = rot * p.kt > p.kn;
       const double k = tang ? rot * p.kt : p.kn;
-      const double lim = dtfactor * sqrt(m / k);
-      if (lim < best) {
-        best = lim;
-        why = fmt::format("{} = {:.6g} of types {} {} with the lightest mass {:.6g} "
-                          "(dt < {} * sqrt(m/{}))",
-                          tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, dtfactor,
-                          tang ? fmt::format("({}*kt)", rot) : "kn");
-      }
+      consider_limit(dtfactor * sqrt(m / k), best, why, [&] {
+        return fmt::format("{} = {:.6g} of types {} {} with the lightest mass {:.6g} "
+                           "(dt < {} * sqrt(m/{}))",
+                           tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, dtfactor,
+                           tang ? fmt::format("({}*kt)", rot) : "kn");
+      });
     }
-  return best == DBL_MAX ? 0.0 : best;
+  return best;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -48,6 +48,7 @@ template <class Style> class PairSaltdemOMP : public Style, public ThrOMP {
 
   void compute(int eflag, int vflag) override
   {
+    this->recheck_timestep();
     this->ev_init(eflag, vflag);
     this->pre_loop();
     const int nall = this->atom->nlocal + this->atom->nghost;

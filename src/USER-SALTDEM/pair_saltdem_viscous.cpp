@@ -10,6 +10,8 @@
 
 #include "pair_saltdem_viscous.h"
 
+#include "saltdem_check.h"
+
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -30,7 +32,8 @@ static const char RHO_FIX_ID[] = "SALTDEM_VISCOUS_RHO";
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), index_rho(-1), fluidself(nullptr), isfluid(nullptr), nmax(0),
     any_fluid(false),
-    calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.5)
+    calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.5),
+    calibration_checked(DEFAULT_CALIBRATION)
 {
   comm_forward = 2;
   comm_reverse = 1;
@@ -71,7 +74,8 @@ void PairSaltdemViscous::settings(int narg, char **arg)
   while (iarg < narg) {
     if (iarg + 2 > narg)
       utils::missing_cmd_args(FLERR, fmt::format("pair_style saltdem/viscous {}", arg[iarg]), error);
-    const double v = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    const double v = SaltDEM::numeric(FLERR, arg[iarg + 1],
+                                      fmt::format("Pair style saltdem/viscous: {}", arg[iarg]), lmp);
     if (strcmp(arg[iarg], "correction") == 0) {
       if (v <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: correction {} must be > 0", v);
       correction = v;
@@ -106,8 +110,11 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
   check_types(narg, arg, 6, usage, ilo, ihi, jlo, jhi);
 
   SaltDEM::ViscousParams p{};
-  p.eta = utils::numeric(FLERR, arg[2], false, lmp);
-  p.kn = utils::numeric(FLERR, arg[3], false, lmp);
+  auto value = [&](const char *str, const char *what) {
+    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style saltdem/viscous: {}", what), lmp);
+  };
+  p.eta = value(arg[2], "eta");
+  p.kn = value(arg[3], "kn");
   if (p.eta <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: eta = {} must be > 0", p.eta);
   if (p.kn < 0.0) error->all(FLERR, "Pair style saltdem/viscous: kn = {} must be >= 0", p.kn);
   p.ratio = 1.0;
@@ -116,22 +123,22 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
   std::string opt;
   if (kw == "fluid") {
     p.mode = SaltDEM::VISCOUS_FLUID;
-    p.h = utils::numeric(FLERR, arg[5], false, lmp);
+    p.h = value(arg[5], "fluid h");
     if (p.h <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid h = {} must be > 0", p.h);
     if (narg != 7)
       error->all(FLERR, "Pair style saltdem/viscous: 'fluid' takes h and K, got {} values; usage: {}",
                  narg - 5, usage);
-    p.K = utils::numeric(FLERR, arg[6], false, lmp);
+    p.K = value(arg[6], "fluid K");
     if (p.K < 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid K = {} must be >= 0", p.K);
   } else if (kw == "contact") {
     p.mode = SaltDEM::VISCOUS_CONTACT;
     if (p.kn <= 0.0)
       error->all(FLERR, "Pair style saltdem/viscous: contact kn = {} must be > 0 (a boundary needs "
                  "its elastic repulsion)", p.kn);
-    p.gap = utils::numeric(FLERR, arg[5], false, lmp);
+    p.gap = value(arg[5], "contact gap");
     if (p.gap < 0.0) error->all(FLERR, "Pair style saltdem/viscous: contact gap = {} must be >= 0", p.gap);
     if (narg == 8 && strcmp(arg[6], "tangential") == 0) {
-      p.ratio = utils::numeric(FLERR, arg[7], false, lmp);
+      p.ratio = value(arg[7], "tangential ratio");
       if (p.ratio < 0.0)
         error->all(FLERR, "Pair style saltdem/viscous: tangential ratio = {} must be >= 0", p.ratio);
     } else if (narg != 6)
@@ -425,7 +432,17 @@ double PairSaltdemViscous::memory_usage()
 
 double PairSaltdemViscous::init_one(int i, int j)
 {
-  if (setflag[i][j]) params[i][j].eta = eta[i][j];
+  if (setflag[i][j]) {
+    // a viscosity set through extract("eta") (fix adapt, fix saltdem/viscosity) passes the
+    // bounds of pair_coeff too
+    if (!(eta[i][j] > 0.0) || !SaltDEM::in_bounds(eta[i][j]))
+      error->all(FLERR,
+                 "Pair style saltdem/viscous: eta = {} of types {} {}, set through extract(\"eta\") "
+                 "(fix adapt or fix saltdem/viscosity), must be > 0, finite and of a magnitude in "
+                 "[{:g}, {:g}]; check the variable or the viscosity that sets it",
+                 eta[i][j], i, j, SaltDEM::MIN_VALUE, SaltDEM::MAX_VALUE);
+    params[i][j].eta = eta[i][j];
+  }
   const double cut = PairSaltdem::init_one(i, j);
   auto &p = params[i][j];
   p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
@@ -433,9 +450,40 @@ double PairSaltdemViscous::init_one(int i, int j)
   p.kfac = 2.0 * correction * p.eta * p.cw;
   p.gn = calibration * p.eta;
   p.gt = p.ratio * p.gn;
+  if (!std::isfinite(p.cw) || !std::isfinite(p.kfac) || !std::isfinite(p.gn) ||
+      !std::isfinite(p.gt) || !std::isfinite(p.ih2))
+    error->all(FLERR,
+               "Pair style saltdem/viscous: the dashpot coefficients of types {} {} are not finite "
+               "(2 correction eta W'(h) = {}, calibration eta = {}, tangential ratio x that = {}) "
+               "from eta = {}, h = {}, correction = {}, calibration = {}, tangential ratio = {}; "
+               "use values of physical size",
+               i, j, p.kfac, p.gn, p.gt, p.eta, p.h, correction, calibration, p.ratio);
   params[j][i] = p;
   eta[j][i] = eta[i][j] = p.eta;
+
+  // a change of the viscosity or calibration since the last time step check (during a run:
+  // fix adapt calls reinit(), hence init_one()): the next force computation checks again
+  if (setflag[i][j] && i < (int) eta_checked.size() && j < (int) eta_checked[i].size() &&
+      (eta_checked[i][j] != p.eta || calibration_checked != calibration)) {
+    recheck = true;
+    recheck_what = calibration_checked != calibration
+        ? fmt::format("the calibration ({:.6g} -> {:.6g})", calibration_checked, calibration)
+        : fmt::format("eta of types {} {} ({:.6g} -> {:.6g} Pa s, e.g. by fix adapt)", i, j,
+                      eta_checked[i][j], p.eta);
+  }
   return cut;
+}
+
+/* the viscosities and calibration of the last time step check */
+
+void PairSaltdemViscous::limits_checked()
+{
+  PairSaltdem::limits_checked();
+  const int n = allocated ? atom->ntypes : 0;
+  eta_checked.assign(n + 1, std::vector<double>(n + 1, 0.0));
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) eta_checked[i][j] = eta[i][j];
+  calibration_checked = calibration;
 }
 
 /* Limits per type pair.  Elastic: dtfactor * sqrt(m/kn).  Viscous: an
@@ -449,24 +497,22 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
 {
   const int n = atom->ntypes;
   const bool disc = (domain->dimension == 2);    // (also before init_style: saltdem/timestep)
-  // smallest inertial mass per unit disc volume per type
-  std::vector<double> local(n + 1, DBL_MAX), mv(n + 1);
-  for (int i = 0; i < atom->nlocal; i++) {
-    const double s = inertia_scale(i);
-    const double r = atom->radius[i];
-    const double vol = disc ? M_PI * r * r : 4.0 * M_PI / 3.0 * r * r * r;
-    if (s > 0.0 && vol > 0.0) local[atom->type[i]] = MIN(local[atom->type[i]], s * atom->rmass[i] / vol);
+  // smallest inertial mass per unit disc volume per type (kept for a re-check during the run)
+  if (!masses_cached || (int) mv_cache.size() != n + 1) {
+    std::vector<double> local(n + 1, DBL_MAX);
+    mv_cache.assign(n + 1, DBL_MAX);
+    for (int i = 0; i < atom->nlocal; i++) {
+      const double s = inertia_scale(i);
+      const double r = atom->radius[i];
+      const double vol = disc ? M_PI * r * r : 4.0 * M_PI / 3.0 * r * r * r;
+      if (s > 0.0 && vol > 0.0) local[atom->type[i]] = MIN(local[atom->type[i]], s * atom->rmass[i] / vol);
+    }
+    MPI_Allreduce(&local[1], &mv_cache[1], n, MPI_DOUBLE, MPI_MIN, world);
   }
-  MPI_Allreduce(&local[1], &mv[1], n, MPI_DOUBLE, MPI_MIN, world);
+  const std::vector<double> &mv = mv_cache;
 
   const double rot = disc ? 3.0 : 3.5;
-  double best = DBL_MAX;
-  auto consider = [&](double lim, std::string &&reason) {
-    if (lim < best) {
-      best = lim;
-      why = reason;
-    }
-  };
+  double best = 0.0;
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) {
       if (!setflag[i][j]) {
@@ -479,34 +525,41 @@ double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
       const double e = eta[i][j];
       const auto &p = params[i][j];
       if (p.kn > 0.0)
-        consider(dtfactor * sqrt(m / p.kn),
-               fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
-                           "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor));
+        consider_limit(dtfactor * sqrt(m / p.kn), best, why, [&] {
+          return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
+                             "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor);
+        });
       double lim;
       std::string formula;
       if (p.mode == SaltDEM::VISCOUS_FLUID) {
         // V = 1/sum W is not known before the first step: bound it by the
         // disc volume over a packing fraction of 0.7
         lim = viscfactor * MIN(mv[i], mv[j]) * 0.7 * p.h * p.h / (7.0 * correction * e);
-        formula = fmt::format("dt < {} * S m h^2 / (7 eta V), V = disc/0.7, h = {:.6g}", viscfactor, p.h);
+        formula = fmt::format("dt < {} * S m h^2 / (7 correction eta V), V = disc/0.7, h = {:.6g}, "
+                              "correction = {:.6g}", viscfactor, p.h, correction);
         // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
         if (p.K > 0.0) {
           const double c = sqrt(p.K / (0.7 * MIN(mv[i], mv[j])));
-          consider(0.25 * p.h / c,
-                   fmt::format("K = {:.6g} of types {} {} (sound speed {:.4g} with the inertial "
+          consider_limit(0.25 * p.h / c, best, why, [&] {
+            return fmt::format("K = {:.6g} of types {} {} (sound speed {:.4g} with the inertial "
                                "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
-                               "K or more inertia", p.K, i, j, c, p.h));
+                               "K or more inertia", p.K, i, j, c, p.h);
+          });
         }
       } else {
         lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio));
-        formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio))", viscfactor, rot);
+        formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio)), "
+                              "calibration = {:.6g}, ratio = {:.6g}, lightest mass {:.6g}",
+                              viscfactor, rot, calibration, p.ratio, m);
       }
-      consider(lim, fmt::format("eta = {:.6g} of types {} {} ({}); a larger dt needs a smaller eta "
-                                "or more inertia for the viscous discs ('fix saltdem/nve ... inertia "
-                                "S' with S >= {:.3g} times the present one)",
-                                e, i, j, formula, update->dt / lim));
+      consider_limit(lim, best, why, [&] {
+        return fmt::format("eta = {:.6g} of types {} {} ({}); a larger dt needs a smaller eta "
+                           "or more inertia for the viscous discs ('fix saltdem/nve ... inertia "
+                           "S' with S >= {:.3g} times the present one)",
+                           e, i, j, formula, update->dt / lim);
+      });
     }
-  return best == DBL_MAX ? 0.0 : best;
+  return best;
 }
 
 /* ---------------------------------------------------------------------- */

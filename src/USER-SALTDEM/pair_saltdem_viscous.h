@@ -120,6 +120,12 @@ class PairSaltdemViscous : public PairSaltdem {
   }
   void init_style() override;
   double stable_dt(const double *, std::string &) override;
+  // the time step check: the viscosities and calibration it saw (a change during the run,
+  // e.g. by fix adapt, is checked again), and the inertial masses per disc volume it used
+  void limits_checked() override;
+  std::vector<std::vector<double>> eta_checked;
+  double calibration_checked;
+  std::vector<double> mv_cache;
 };
 
 }    // namespace LAMMPS_NS

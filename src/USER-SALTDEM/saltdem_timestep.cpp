@@ -16,6 +16,7 @@
 #include "force.h"
 #include "input.h"
 #include "pair_saltdem.h"
+#include "saltdem_check.h"
 
 #include <cmath>
 
@@ -26,36 +27,24 @@ void SaltdemTimestep::command(int narg, char **arg)
   if (narg != 1) error->all(FLERR, "Illegal saltdem/timestep command: usage: saltdem/timestep F");
   if (domain->box_exist == 0)
     error->all(FLERR, "saltdem/timestep command before simulation box is defined");
-  const double frac = utils::numeric(FLERR, arg[0], false, lmp);
+  const double frac = SaltDEM::numeric(FLERR, arg[0], "saltdem/timestep: fraction F", lmp);
   if (!(frac > 0.0 && frac <= 1.0))
     error->all(FLERR, "saltdem/timestep: fraction {} of the stable limit must be in (0, 1]", frac);
 
-  // every SaltDEM sub-style of a hybrid (pair_match returns the n-th match, and the only one
-  // again past the last), or the pair style itself
-  double best = 0.0;
-  std::string why, style;
-  PairSaltdem *last = nullptr;
-  for (int n = 1; n <= 64; n++) {
-    auto pair = dynamic_cast<PairSaltdem *>(force->pair_match("saltdem/", 0, n));
-    if (!pair || pair == last) break;
-    last = pair;
-    std::string reason;
-    const double lim = pair->stable_limit(reason);
-    if (!std::isfinite(lim) || lim < 0.0)
-      error->all(FLERR, "saltdem/timestep: pair style {} reports a stable limit of {} ({}): "
-                 "check the coefficient it names", pair->name_of(), lim, reason);
-    if (lim > 0.0 && (best == 0.0 || lim < best)) {
-      best = lim;
-      why = reason;
-      style = pair->name_of();
-    }
-  }
-  if (!last)
+  // the smallest limit over every SaltDEM pair style present (alone or the sub-styles of a
+  // hybrid): the same as the styles' own check at each run; a limit that is not a finite
+  // positive number (zero or infinite: a coefficient or mass out of range) stops here
+  if (PairSaltdem::saltdem_styles(lmp).empty())
     error->all(FLERR, "saltdem/timestep needs a SaltDEM pair style (saltdem/cohesive, "
                "saltdem/viscous; alone or in pair_style hybrid) with its coefficients set");
-  if (best == 0.0)
+  const auto lim = PairSaltdem::smallest_limit(lmp, "saltdem/timestep: ");
+  if (!lim.pair)
     error->all(FLERR, "saltdem/timestep: no stable limit applies (no integrated particles "
-               "interact through a SaltDEM pair style yet): set the time step with 'timestep'");
+               "interact through a SaltDEM pair style yet, or its coefficients are not set): set "
+               "the time step with 'timestep'");
+  const double best = lim.dt;
+  const std::string &why = lim.why;
+  const std::string style = lim.pair->name_of();
 
   const double dt = frac * best;
   if (comm->me == 0)

@@ -10,6 +10,8 @@
 
 #include "saltdem_wall.h"
 
+#include "saltdem_check.h"
+
 #include "atom.h"
 #include "atom_vec.h"
 #include "comm.h"
@@ -20,6 +22,8 @@
 #include <cmath>
 
 using namespace LAMMPS_NS;
+
+static constexpr double MAXWALL = 1e7;    // most discs one command makes
 
 static const char *usage = "saltdem/wall TYPE x0 y0 x1 y1 R [group NAME] [density RHO]";
 
@@ -39,7 +43,7 @@ void SaltdemWall::command(int narg, char **arg)
   const double y0 = utils::numeric(FLERR, arg[2], false, lmp);
   const double x1 = utils::numeric(FLERR, arg[3], false, lmp);
   const double y1 = utils::numeric(FLERR, arg[4], false, lmp);
-  const double r = utils::numeric(FLERR, arg[5], false, lmp);
+  const double r = SaltDEM::numeric(FLERR, arg[5], "saltdem/wall: radius R", lmp);
   if (r <= 0.0) error->all(FLERR, "saltdem/wall: radius R = {} must be > 0", r);
 
   int igroup = -1;
@@ -50,7 +54,7 @@ void SaltdemWall::command(int narg, char **arg)
     if (kw == "group") {
       igroup = group->find_or_create(arg[iarg + 1]);
     } else if (kw == "density") {
-      density = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      density = SaltDEM::numeric(FLERR, arg[iarg + 1], "saltdem/wall: density", lmp);
       if (density <= 0.0) error->all(FLERR, "saltdem/wall: density = {} must be > 0", density);
     } else
       error->all(FLERR, "saltdem/wall: unknown keyword '{}'; usage: {}", kw, usage);
@@ -68,8 +72,24 @@ void SaltdemWall::command(int narg, char **arg)
   check(x1, y1);
   if (domain->triclinic) error->all(FLERR, "saltdem/wall does not support triclinic boxes");
 
+  // a wall disc larger than the box is not a wall of this scene (and its ghost cutoff would
+  // span the box many times)
+  const double extent = MAX(hi[0] - lo[0], hi[1] - lo[1]);
+  if (r > extent)
+    error->all(FLERR, "saltdem/wall: radius R = {} exceeds the box size {}; give the radius in the "
+               "units of the box", r, extent);
+
+  // the number of discs in 64 bits: a tiny radius on a long line must not wrap around
   const double len = sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0));
-  const int nseg = len > 0.0 ? (int) ceil(len / (2.0 * r) - 1e-9) : 0;
+  const double nsegd = len > 0.0 ? ceil(len / (2.0 * r) - 1e-9) : 0.0;
+  if (!(nsegd + 1.0 <= MAXWALL))
+    error->all(FLERR, "saltdem/wall: a line of length {} with discs of radius {} needs {:.4g} wall "
+               "discs, more than the {:.0f} one command makes; use a larger radius (the discs "
+               "must touch: spacing <= 2R)", len, r, nsegd + 1.0, MAXWALL);
+  const bigint nseg = (bigint) nsegd;
+  if ((bigint) atom->nlocal + nseg + 1 > MAXSMALLINT || atom->natoms + nseg + 1 > MAXTAGINT)
+    error->all(FLERR, "saltdem/wall: {} more wall discs would exceed the number of atoms LAMMPS "
+               "can hold; use a larger radius", nseg + 1);
   // new atoms overwrite ghost atoms: clear them and the map first (as create_atoms does)
   if (atom->map_style != Atom::MAP_NONE) atom->map_clear();
   atom->nghost = 0;
@@ -77,7 +97,7 @@ void SaltdemWall::command(int narg, char **arg)
 
   const int nlocal_previous = atom->nlocal;
   const double *sublo = domain->sublo, *subhi = domain->subhi;
-  for (int k = 0; k <= nseg; k++) {
+  for (bigint k = 0; k <= nseg; k++) {
     const double t = nseg ? double(k) / nseg : 0.0;
     double x[3] = {x0 + t * (x1 - x0), y0 + t * (y1 - y0), 0.0};
     bool mine = true;
@@ -91,8 +111,15 @@ void SaltdemWall::command(int narg, char **arg)
   }
 
   atom->data_fix_compute_variable(nlocal_previous, atom->nlocal);
+  const bigint natoms_previous = atom->natoms;
   bigint nblocal = atom->nlocal;
   MPI_Allreduce(&nblocal, &atom->natoms, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  // every disc of the line lies in the box, so some rank owns it: never fewer, never none
+  const bigint made = atom->natoms - natoms_previous;
+  if (made != nseg + 1)
+    error->all(FLERR, "saltdem/wall: made {} of the {} wall discs from ({}, {}) to ({}, {}) (the "
+               "others fell outside every sub-domain); move the end points inside the box",
+               made, nseg + 1, x0, y0, x1, y1);
   if (atom->tag_enable) atom->tag_extend();
   atom->tag_check();
   if (atom->map_style != Atom::MAP_NONE) {

@@ -28,7 +28,10 @@ The cost is the CPU time of the LAMMPS process (on a busy machine the wall time 
 says less), measured on the machine that runs the script.  Writes OUT/results.json,
 OUT/table.md and, with --img DIR, one PNG per flow (error against CPU time, one line per knob).
 
-  /usr/bin/python3 bench/error_vs_time.py [--out out/error] [--img docs/img] [--knobs dt,inertia]
+  PYTHONPATH=python /usr/bin/python3 bench/error_vs_time.py [--out out/error] [--img docs/img] [--knobs dt,inertia]
+
+(from the repository root; PYTHONPATH=python imports the checkout's saltdem_post, not needed
+once it is installed, see the README)
 """
 import argparse
 import json
@@ -43,9 +46,13 @@ import time
 
 import numpy as np
 
+try:
+    from saltdem_post.dump import read_ave_chunk
+except ImportError as exc:
+    sys.exit(f"error_vs_time: {exc}: run with PYTHONPATH=python (from the repository root) or install "
+             "the Python tools (pip install ./python)")
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "python"))
-from saltdem_post.calibfit import read_ave_chunk  # noqa: E402
 
 CHANNEL = ROOT / "tests" / "decks" / "channel.in"
 PARAMS = ROOT / "potentials" / "salt_paper.params"

@@ -26,7 +26,10 @@ Cost: CPU time of the whole LAMMPS run (assembly, settling and faulting; the pac
 assembly is made once beforehand).  Writes OUT/expt1.json,
 OUT/expt1_table.md and, with --img DIR, DIR/error_vs_time_expt1.png.
 
-  /usr/bin/python3 bench/expt1_error.py [--out out/error] [--img docs/img] [--target 50]
+  PYTHONPATH=python /usr/bin/python3 bench/expt1_error.py [--out out/error] [--img docs/img] [--target 50]
+
+(from the repository root; PYTHONPATH=python imports the checkout's saltdem_post, not needed
+once it is installed, see the README)
 """
 import argparse
 import json
@@ -39,12 +42,15 @@ import time
 
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "python"))
+try:
+    from saltdem_post.dump import match_ids, read_frame
+    from saltdem_post.measure import salt_thickness
+    from saltdem_post.strain import strain_between
+except ImportError as exc:
+    sys.exit(f"expt1_error: {exc}: run with PYTHONPATH=python (from the repository root) or install "
+             "the Python tools (pip install ./python)")
 
-from saltdem_post.dump import match_ids, read_frame  # noqa: E402
-from saltdem_post.measure import salt_thickness  # noqa: E402
-from saltdem_post.strain import strain_between  # noqa: E402
+ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 QUICK = dict(dt=0.0025, dstep=0.00125, eta=5e8)    # examples/scene/params.in, preset quick
 SALT = 1000.0                                     # m, the scene's salt thickness

@@ -27,11 +27,9 @@ import numpy as np
 import pytest
 
 from lmprun import ROOT, check_ok, lmp_path
-
-sys.path.insert(0, str(ROOT / "python"))
-
-from saltdem_post import calibfit  # noqa: E402
-from saltdem_post import calibrate  # noqa: E402
+# python/ is on the module path through pytest.ini (pythonpath = python)
+from saltdem_post.calibration import cli as calibrate
+from saltdem_post.calibration import fit as calibfit
 
 COVER = ROOT / "potentials" / "cover_paper.params"
 SALT = ROOT / "potentials" / "salt_paper.params"

@@ -1,4 +1,5 @@
-"""``python -m saltdem_post`` (with ``python/`` on ``sys.path``)."""
+"""``python3 -m saltdem_post``: the ``saltdem-post`` command line (installed,
+or with ``python/`` on the module path: ``PYTHONPATH=python``)."""
 
 import sys
 

@@ -1,10 +1,14 @@
-"""Streaming reader (and a small writer) for LAMMPS text ``dump custom`` files.
+"""Reading SaltDEM's LAMMPS output files: the package's one I/O module.
 
-Frames are read one at a time, so a run of any length only ever holds the
-frames the caller keeps.  Files may be gzip-compressed (detected from the
-magic bytes, not the name), hold several frames, or be one file per frame
-(``dump.*.txt``, sorted by the numbers in their names).  Columns are looked up
-by name, in whatever order the deck wrote them.
+* ``dump custom`` text files: a streaming reader and a small writer.  Frames
+  are read one at a time, so a run of any length only ever holds the frames
+  the caller keeps.  Files may be gzip-compressed (detected from the magic
+  bytes, not the name), hold several frames, or be one file per frame
+  (``dump.*.txt``, sorted by the numbers in their names).  Columns are looked
+  up by name, in whatever order the deck wrote them.
+* ``fix ave/chunk`` and ``fix ave/time`` files (the calibration and channel
+  decks' profiles and time series): ``read_ave_chunk``, ``read_ave_time``,
+  gzip-compressed or not.
 """
 
 from __future__ import annotations
@@ -24,12 +28,12 @@ import numpy as np
 __all__ = [
     "Box", "Frame", "FrameHeader", "DumpFormatError", "expand_paths",
     "iter_frames", "scan_frames", "read_frame", "write_dump", "FrameSelection",
-    "match_ids",
+    "match_ids", "read_ave_chunk", "read_ave_time",
 ]
 
 
 class DumpFormatError(ValueError):
-    """The file is not a LAMMPS text dump we understand."""
+    """The file is not a LAMMPS text dump (or ave/chunk, ave/time file) we understand."""
 
 
 # Columns LAMMPS writes as integers; custom integer properties are ``i_*``.
@@ -517,3 +521,36 @@ def write_dump(path_or_file, frames: Iterable[Frame], append: bool = False) -> N
     else:
         with open(path, mode, encoding="ascii") as fh:
             emit(fh)
+
+
+# ----------------------------------------------------- fix ave/chunk, ave/time
+
+def _ave_rows(path):
+    """(line number, fields) of the non-comment, non-blank lines of a fix ave/* file."""
+    with _Source(str(path)) as src:
+        for n, line in enumerate(src.fh, 1):
+            s = line.split()
+            if s and not s[0].startswith(b"#"):
+                yield n, s
+
+
+def read_ave_chunk(path) -> List[np.ndarray]:
+    """Blocks of a ``fix ave/chunk`` file, oldest first: one array per output
+    step with a row ``[Chunk Coord1 ... Ncount value ...]`` per chunk (the
+    step's header line ``Timestep Nchunks Total-count`` starts a block)."""
+    blocks: List[list] = []
+    for n, s in _ave_rows(path):
+        if len(s) == 3:
+            blocks.append([])
+        elif not blocks:
+            raise DumpFormatError(f"{path}:{n}: chunk row before the first 'Timestep Nchunks Total-count' line "
+                                  "(not a fix ave/chunk file?)")
+        else:
+            blocks[-1].append([float(v) for v in s])
+    return [np.array(b) for b in blocks if b]
+
+
+def read_ave_time(path) -> np.ndarray:
+    """The rows of a ``fix ave/time`` file (scalar mode) as a 2-d array:
+    ``[TimeStep value ...]`` per output step."""
+    return np.array([[float(v) for v in s] for _, s in _ave_rows(path)])

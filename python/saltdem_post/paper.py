@@ -89,6 +89,6 @@ def scene_key(name: str) -> str:
     for key in STATEMENTS:
         if name == key:
             return key
-    if name.startswith("expt1"):
+    if name.startswith(("expt1", "e1_")):
         return "expt1_slow" if "slow" in name else "expt1"
     return name.split("_")[0] if name.split("_")[0] in STATEMENTS else "general"

@@ -1,16 +1,15 @@
-"""Shared test helpers: the package is imported from python/ in the checkout."""
+"""Shared test helpers.  The package is imported from python/ in the checkout:
+pytest.ini's ``pythonpath = python`` puts it on the module path."""
 
 import os
-import sys
 
 import numpy as np
 import pytest
 
+from saltdem_post.dump import Box, Frame
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
-sys.path.insert(0, os.path.join(REPO, "python"))
-
-from saltdem_post.dump import Box, Frame  # noqa: E402
 
 FIXTURE = os.path.join(HERE, "data", "small_scene.dump.gz")
 

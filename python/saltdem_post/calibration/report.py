@@ -1,5 +1,5 @@
 """The calibration report: ``report.md`` (tables) and PNG plots, written from
-the ``results.json`` of ``saltdem-calibrate`` (see ``calibrate``)."""
+the ``results.json`` of ``saltdem-calibrate`` (see ``saltdem_post.calibration.cli``)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ matplotlib.use("Agg")                         # files only, never a window
 import matplotlib.pyplot as plt               # noqa: E402
 import numpy as np                            # noqa: E402
 
-from .calibfit import sigma1_from_mc          # noqa: E402
+from .fit import sigma1_from_mc          # noqa: E402
 
 MPA = 1e6
 DPI = 90
@@ -115,7 +115,7 @@ def matched_comparison(bx: dict) -> List[str]:
     """Sets that differ from the set `full` only by the inertia factor, on a
     subset of its packs: the fit of `full` over the same packs beside them
     (the scatter between packs is larger than the effect looked for)."""
-    from .calibfit import mohr_coulomb_fit
+    from .fit import mohr_coulomb_fit
     full = bx.get("full")
     if not full:
         return []

@@ -20,8 +20,10 @@ directory (``-o``, default ``out/calibration``):
 
 Every command merges its results into ``results.json`` of the output
 directory and rewrites the report from all sections there, so a ``search``
-followed by ``all`` in the same directory gives one report.  See
-docs/validation.md.
+followed by ``all`` in the same directory gives one report.  The decks,
+``tools/pack.in``, ``potentials/`` and the default ``build/lmp`` are those of
+the SaltDEM checkout (``find_repo``: $SALTDEM_ROOT, the checkout this package
+sits in, or the one the current directory is in).  See docs/validation.md.
 """
 
 from __future__ import annotations
@@ -44,11 +46,36 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
-from .calibfit import (BiaxialCurve, Couette, MohrCoulomb, couette_fit, find_peak, mohr_coulomb_fit,
-                       newtonian_fit, read_ave_chunk, read_ave_time, repose_angle)
-from .output import ensure_dir, write_json
+from ..dump import read_ave_chunk, read_ave_time
+from ..output import ensure_dir, write_json
+from .fit import (BiaxialCurve, Couette, MohrCoulomb, couette_fit, find_peak, mohr_coulomb_fit, newtonian_fit,
+                  repose_angle)
 
-REPO = Path(__file__).resolve().parents[2]
+
+
+def _is_checkout(path: Path) -> bool:
+    return (path / "examples" / "calibration" / "biaxial.in").is_file() and (path / "tools" / "pack.in").is_file()
+
+
+def find_repo() -> Optional[Path]:
+    """The SaltDEM checkout whose decks, packing tool, potentials and build/lmp
+    the calibration uses: $SALTDEM_ROOT if set, else the checkout this package
+    sits in (python/saltdem_post/calibration/ of a checkout: the wrapper
+    python/saltdem-calibrate), else (an installed package) the current
+    directory or the nearest directory above it that is a checkout.  None if
+    there is none; the commands that run LAMMPS then stop with an error."""
+    env = os.environ.get("SALTDEM_ROOT")
+    if env:
+        return Path(env).resolve()
+    here = Path(__file__).resolve().parents[3]
+    if _is_checkout(here):
+        return here
+    cwd = Path.cwd().resolve()
+    return next((d for d in (cwd, *cwd.parents) if _is_checkout(d)), None)
+
+
+_FOUND = find_repo()
+REPO = _FOUND if _FOUND is not None else Path(__file__).resolve().parents[3]
 DECKS = REPO / "examples" / "calibration"
 POTENTIALS = REPO / "potentials"
 PACK_IN = REPO / "tools" / "pack.in"
@@ -415,7 +442,7 @@ def load_results(ctx: Context) -> dict:
 def save_results(ctx: Context, results: dict) -> None:
     results["updated"] = datetime.datetime.now().isoformat(timespec="seconds")
     write_json(str(ctx.out / "results.json"), results)
-    from .calibreport import write_report
+    from .report import write_report
     path = write_report(ctx.out, results)
     say(f"report: {path}")
 
@@ -782,6 +809,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ctx = Context(lmp=args.lmp, out=Path(args.out).resolve(), jobs=args.jobs, quiet=args.quiet, rerun=args.rerun)
     ensure_dir(str(ctx.out))
     try:
+        if args.command != "report" and not _is_checkout(REPO):
+            raise CalibrationError(f"no SaltDEM checkout at {REPO} (no examples/calibration/biaxial.in or "
+                                   "tools/pack.in): run from the checkout or set SALTDEM_ROOT")
         if args.command != "report" and not os.path.isfile(ctx.lmp):
             raise CalibrationError(f"no LAMMPS executable at {ctx.lmp}: build it or pass --lmp / SALTDEM_LMP")
         if args.command == "all":

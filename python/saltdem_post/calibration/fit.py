@@ -269,31 +269,6 @@ class Couette:
         return asdict(self)
 
 
-def read_ave_chunk(path) -> List[np.ndarray]:
-    """Blocks of a fix ave/chunk file: [Chunk Coord1 Ncount value...] per block."""
-    blocks = []
-    with open(path, encoding="utf-8") as fh:
-        for line in fh:
-            s = line.split()
-            if not s or s[0].startswith("#"):
-                continue
-            if len(s) == 3:
-                blocks.append([])
-            else:
-                blocks[-1].append([float(v) for v in s])
-    return [np.array(b) for b in blocks if b]
-
-
-def read_ave_time(path) -> np.ndarray:
-    rows = []
-    with open(path, encoding="utf-8") as fh:
-        for line in fh:
-            s = line.split()
-            if s and not s[0].startswith("#"):
-                rows.append([float(v) for v in s])
-    return np.array(rows)
-
-
 def couette_fit(y, vx, tau: float, lo: float, hi: float):
     """Shear rate (slope of vx(y)) over lo < y < hi, R^2 and tau / rate."""
     y, vx = np.asarray(y, float), np.asarray(vx, float)

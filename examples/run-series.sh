@@ -67,7 +67,7 @@ for r in "${runs[@]}"; do
   [ -n "$newest" ] && resume=(-var restart "$newest")
   echo "run-series: $name ($deck.in -var rate $rate $vars ${resume[*]}) in $out"
   start=$(date +%s)
-  seg=$(( $(cat "$out/wall_segments.txt" 2>/dev/null | wc -l) + 1 ))    # log.lammps, log.2.lammps, ...
+  seg=1; [ -f "$out/wall_segments.txt" ] && seg=$(( $(wc -l < "$out/wall_segments.txt") + 1 ))    # log.lammps, log.2.lammps, ...
   log=log.lammps; [ "$seg" -gt 1 ] && log=log.$seg.lammps
   # shellcheck disable=SC2086
   (cd "$out" && ${MPIRUN:-} "$lmp" -in "$root/examples/$deck.in" -var root "$root" \

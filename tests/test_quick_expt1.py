@@ -45,10 +45,12 @@ def test_salt_flows_and_hanging_wall_subsides(quick):
 
     first, last = frames[0], frames[-1]
     throw = 250 * np.sin(np.radians(30))
-    for t in (2, 1):    # salt top, cover top
+    # (at the paper's rate and salt the cover moves as one raft, docs/scenes.md: its top over the
+    # hanging wall sinks only a little more than over the footwall, the salt top clearly more)
+    for t, margin in ((2, 0.15), (1, 0.05)):    # salt top, cover top
         fw = top(last, t, 500, 2500) - top(first, t, 500, 2500)
         hw = top(last, t, 3800, 5800) - top(first, t, 3800, 5800)
-        assert hw < fw - 0.15 * throw, (t, fw, hw)
+        assert hw < fw - margin * throw, (t, fw, hw)
         assert hw > -1.5 * throw, (t, fw, hw)    # bounded by the basement's own drop + heave
     # the salt bands deform: the marker band boundaries are no longer vertical above the fault
     s0, s1 = first["type"] == 2, last["type"] == 2

@@ -147,7 +147,7 @@ def test_series_runner_fig7(tmp_path):
     assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
     for salt in (1000, 500, 250):
         d = ROOT / "out" / "fig7_tiny" / f"fig7_salt{salt}"
-        assert f"salt {salt} m" in (d / "stdout.txt").read_text()
+        assert f"salt {salt} m" in (d / "stdout.1.txt").read_text()
         assert (d / "figures" / f"fig7_salt{salt}.png").stat().st_size > 10000
 
 

@@ -9,17 +9,21 @@
 #            the cover keeps its 1750 m)
 #   seeds    Expt 1 with three more packing seeds (what is robust, what is one packing's)
 #   study    quick Expt 1 changing one assumption at a time (docs/scenes.md)
-#   gallery  everything docs/gallery.md shows: at quick expts, fig6, fig7 and seeds; at
-#            medium Expt 1, Expt 3 and fig7
+#   contact  the paper's kind of salt (-var saltlaw contact, docs/scenes.md): expts, fig7 and
+#            fig6 with disc-contact salt instead of the default Newtonian SPH salt
+#   gallery  everything docs/gallery.md shows: at quick expts, fig7, seeds, contact and fig6;
+#            at medium Expt 1, Expt 3 and fig7
 # PRESET: full (default: the paper's resolution), medium, quick, tiny.  Every run goes to the
 # paper's 1000 m at the paper's physics (examples/scene/params.in).
-# Output: out/SERIES_PRESET/NAME/ with the frames, log, figures/NAME.png, outcomes/outcomes.md
-# and wall.txt.  A finished run (its 'done' file) is skipped; an interrupted one resumes from
-# the newer of its restart files.  LMP (default build/lmp) and MPIRUN (e.g. "mpirun -np 8")
-# choose how lmp runs; ONLY=NAME runs one run of the series.
+# Output: out/SERIES_PRESET/NAME/ with the frames, log, figures/NAME.png, outcomes/outcomes.md,
+# wall.txt and cmd.txt (the run's lmp command).  A finished run (its 'done' file) is skipped;
+# an interrupted one resumes from the newer of its restart files.  LMP (default build/lmp) and
+# MPIRUN (e.g. "mpirun -np 8") choose how lmp runs; ONLY="NAME ..." runs only those runs of
+# the series (e.g. to split a series between cores: one run-series.sh per core, each with its
+# own ONLY list).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|gallery [full|medium|quick|tiny] [-- lmp args]}
+series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|gallery [full|medium|quick|tiny] [-- lmp args]}
 preset=${2:-full}
 shift $(( $# >= 2 ? 2 : 1 ))
 [ "${1:-}" = "--" ] && shift
@@ -43,6 +47,13 @@ study=("base expt1 0.05" "endwall_smooth expt1 0.05 -var endwall smooth"
        "eta1000x expt1 0.05 -var eta 5e11 -var S 4000"
        "salt_contact expt1 0.05 -var saltlaw contact -var csalt_cal 0.5"
        "frame_damping expt1 0.05 -var eta 5e6 -var damping 5e4")
+cs="-var saltlaw contact"
+contact=("expt1_contact expt1 0.05 $cs" "expt3_contact expt3 0.05 $cs" "expt2_contact expt2 0.05 $cs"
+         "fig7_salt1000_contact expt1 0.05 -var dip 65 -var salt 1000 $cs"
+         "fig7_salt500_contact expt1 0.05 -var dip 65 -var salt 500 $cs"
+         "fig7_salt250_contact expt1 0.05 -var dip 65 -var salt 250 $cs"
+         "expt1_slow_contact expt1 0.01 $cs" "expt3_slow_contact expt3 0.01 $cs"
+         "expt2_slow_contact expt2 0.01 $cs")
 runs=()
 case $series in
   expts) runs=("${expts[@]}") ;;
@@ -50,15 +61,16 @@ case $series in
   fig7)  runs=("${fig7[@]}") ;;
   seeds) runs=("${seeds[@]}") ;;
   study) runs=("${study[@]}") ;;
+  contact) runs=("${contact[@]}") ;;
   gallery)
     if [ "$preset" = medium ]; then runs=("expt1 expt1 0.05" "expt3 expt3 0.05" "${fig7[@]}")
-    else runs=("${expts[@]}" "${fig6[@]}" "${fig7[@]}" "${seeds[@]}"); fi ;;
-  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study or gallery" >&2; exit 2 ;;
+    else runs=("${expts[@]}" "${fig7[@]}" "${seeds[@]}" "${contact[@]}" "${fig6[@]}"); fi ;;
+  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact or gallery" >&2; exit 2 ;;
 esac
 
 for r in "${runs[@]}"; do
   read -r name deck rate vars <<< "$r"
-  [ -n "${ONLY:-}" ] && [ "$ONLY" != "$name" ] && continue
+  [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]] && continue
   out="$root/out/${series}_${preset}/$name"
   if [ -f "$out/done" ]; then echo "run-series: $name done already ($out)"; continue; fi
   mkdir -p "$out"
@@ -66,6 +78,7 @@ for r in "${runs[@]}"; do
   newest=$(cd "$out" && ls -t "$deck".restart.a "$deck".restart.b 2>/dev/null | head -1 || true)
   [ -n "$newest" ] && resume=(-var restart "$newest")
   echo "run-series: $name ($deck.in -var rate $rate $vars ${resume[*]}) in $out"
+  echo "lmp -in examples/$deck.in -var preset $preset -var rate $rate $vars" | tr -s ' ' > "$out/cmd.txt"
   start=$(date +%s)
   seg=1; [ -f "$out/wall_segments.txt" ] && seg=$(( $(wc -l < "$out/wall_segments.txt") + 1 ))    # log.lammps, log.2.lammps, ...
   log=log.lammps; [ "$seg" -gt 1 ] && log=log.$seg.lammps

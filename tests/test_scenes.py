@@ -1,5 +1,6 @@
 """The paper's scenes (examples/expt1-3.in) at the tiny preset, and the scene assembly."""
 import os
+import shutil
 import subprocess
 
 import numpy as np
@@ -149,6 +150,25 @@ def test_series_runner_fig7(tmp_path):
         d = ROOT / "out" / "fig7_tiny" / f"fig7_salt{salt}"
         assert f"salt {salt} m" in (d / "stdout.1.txt").read_text()
         assert (d / "figures" / f"fig7_salt{salt}.png").stat().st_size > 10000
+        assert (d / "cmd.txt").read_text().strip() == \
+            f"lmp -in examples/expt1.in -var preset tiny -var rate 0.05 -var dip 65 -var salt {salt}"
+
+
+def test_series_runner_contact_only_list(tmp_path):
+    """examples/run-series.sh contact tiny with ONLY: just the named runs, with the contact salt."""
+    series = ROOT / "out" / "contact_tiny"
+    shutil.rmtree(series, ignore_errors=True)
+    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), ONLY="fig7_salt250_contact expt3_contact")
+    r = subprocess.run(["bash", str(ROOT / "examples" / "run-series.sh"), "contact", "tiny"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=600, env=env)
+    assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
+    assert sorted(p.name for p in series.iterdir()) == ["expt3_contact", "fig7_salt250_contact"]
+    for name, deck in (("fig7_salt250_contact", "expt1"), ("expt3_contact", "expt3")):
+        d = series / name
+        assert "-var saltlaw contact" in (d / "cmd.txt").read_text()
+        assert f"examples/{deck}.in" in (d / "cmd.txt").read_text()
+        assert (d / "done").exists() and (d / "outcomes" / "outcomes.json").exists()
+        assert "scene: salt law contact" in (d / "stdout.1.txt").read_text()
 
 
 @pytest.mark.parametrize("name", ["expt1", "expt2"])

@@ -3,6 +3,7 @@ one statement per line with its section and figure, for the gallery's side-by-si
 
 from __future__ import annotations
 
+import re
 from typing import Dict, List, Tuple
 
 # scene key -> (where, [statements])
@@ -85,10 +86,11 @@ STATEMENTS: Dict[str, Tuple[str, List[str]]] = {
 
 
 def scene_key(name: str) -> str:
-    """The statements' key for a gallery run name (seeds and variants of Expt 1 -> expt1)."""
-    for key in STATEMENTS:
-        if name == key:
-            return key
-    if name.startswith(("expt1", "e1_")):
-        return "expt1_slow" if "slow" in name else "expt1"
-    return name.split("_")[0] if name.split("_")[0] in STATEMENTS else "general"
+    """The statements' key for a gallery run name: the longest key the name starts with, after
+    the variant tags a series adds (``_contact``, ``_seedN``) are dropped; the study's variants
+    (``e1_...``) are Expt 1; anything else is 'general'."""
+    base = re.sub(r"_(contact|seed\d+)(?=_|$)", "", name)
+    if base.startswith("e1_"):
+        base = "expt1"
+    keys = [k for k in STATEMENTS if k != "general" and (base == k or base.startswith(k + "_"))]
+    return max(keys, key=len) if keys else "general"

@@ -11,7 +11,10 @@
 #   study    quick Expt 1 changing one assumption at a time (docs/scenes.md)
 #   contact  the paper's kind of salt (-var saltlaw contact, docs/scenes.md): expts, fig7 and
 #            fig6 with disc-contact salt instead of the default Newtonian SPH salt
-#   gallery  everything docs/gallery.md shows: at quick expts, fig7, seeds, contact and fig6;
+#   eta100   Expts 1-3 with salt 100x more viscous than the paper states (5e10 Pa s, S x100 to
+#            keep the Reynolds number): the Newtonian salt as strong as the paper's kind of salt
+#            is under the scenes' overburden (docs/scenes.md)
+#   gallery  everything docs/gallery.md shows: at quick expts, fig7, eta100, contact, seeds and fig6;
 #            at medium Expt 1, Expt 3 and fig7
 # PRESET: full (default: the paper's resolution), medium, quick, tiny.  Every run goes to the
 # paper's 1000 m at the paper's physics (examples/scene/params.in).
@@ -23,7 +26,7 @@
 # own ONLY list).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|gallery [full|medium|quick|tiny] [-- lmp args]}
+series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|eta100|gallery [full|medium|quick|tiny] [-- lmp args]}
 preset=${2:-full}
 shift $(( $# >= 2 ? 2 : 1 ))
 [ "${1:-}" = "--" ] && shift
@@ -54,6 +57,8 @@ contact=("expt1_contact expt1 0.05 $cs" "expt3_contact expt3 0.05 $cs" "expt2_co
          "fig7_salt250_contact expt1 0.05 -var dip 65 -var salt 250 $cs"
          "expt1_slow_contact expt1 0.01 $cs" "expt3_slow_contact expt3 0.01 $cs"
          "expt2_slow_contact expt2 0.01 $cs")
+eta100=("expt1_eta100x expt1 0.05 -var eta 5e10 -var S 400" "expt3_eta100x expt3 0.05 -var eta 5e10 -var S 400"
+        "expt2_eta100x expt2 0.05 -var eta 5e10 -var S 400")
 runs=()
 case $series in
   expts) runs=("${expts[@]}") ;;
@@ -62,10 +67,11 @@ case $series in
   seeds) runs=("${seeds[@]}") ;;
   study) runs=("${study[@]}") ;;
   contact) runs=("${contact[@]}") ;;
+  eta100) runs=("${eta100[@]}") ;;
   gallery)
     if [ "$preset" = medium ]; then runs=("expt1 expt1 0.05" "expt3 expt3 0.05" "${fig7[@]}")
-    else runs=("${expts[@]}" "${fig7[@]}" "${seeds[@]}" "${contact[@]}" "${fig6[@]}"); fi ;;
-  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact or gallery" >&2; exit 2 ;;
+    else runs=("${expts[@]}" "${fig7[@]}" "${eta100[@]}" "${contact[@]}" "${seeds[@]}" "${fig6[@]}"); fi ;;
+  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, eta100 or gallery" >&2; exit 2 ;;
 esac
 
 for r in "${runs[@]}"; do

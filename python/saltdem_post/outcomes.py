@@ -946,8 +946,8 @@ def region_names(tips: Sequence[BasementTip], scene: str) -> List[str]:
 
 def flow_regions(flows: Sequence[BandFlow], tips: Sequence[BasementTip], scene: str) -> List[dict]:
     """Assign each band to a region between the tips (by its x now) and
-    summarise: band counts per character, the dominant character among the
-    flowing bands, mean terms and the direction of the mean offset."""
+    summarise: band counts per character, the most common character, mean
+    terms and the direction of the mean offset."""
     names = region_names(tips, scene)
     edges = [t.x for t in tips]
     for f in flows:
@@ -956,11 +956,11 @@ def flow_regions(flows: Sequence[BandFlow], tips: Sequence[BasementTip], scene: 
 
 
 def _region_summary(name: str, fs: Sequence[BandFlow]) -> dict:
-    counts = {c: sum(f.character == c for f in fs) for c in ("Couette", "Poiseuille", "plug", "static")}
-    if counts["Couette"] or counts["Poiseuille"]:
-        dominant = "Couette" if counts["Couette"] >= counts["Poiseuille"] else "Poiseuille"
-    else:
-        dominant = "plug" if counts["plug"] else ("static" if fs else None)
+    order = ("Couette", "Poiseuille", "plug", "static")
+    counts = {c: sum(f.character == c for f in fs) for c in order}
+    # the most common character (ties go to the earlier one in 'order'): a salt that mostly rides
+    # as a plug with one sheared band is a plug, not a Couette flow
+    dominant = max(order, key=lambda c: (counts[c], -order.index(c))) if fs else None
     mean = float(np.mean([f.mean_offset_m for f in fs])) if fs else None
     if mean is None:
         direction = None

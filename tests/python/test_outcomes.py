@@ -227,6 +227,23 @@ def test_salt_flow_reversed_and_static():
     assert all(g["character"] == "static" and g["direction"] == "none" for g in still)
 
 
+def test_salt_riding_as_a_plug_is_a_plug():
+    """Hanging-wall salt carried along whole, with one band sheared: the region is a plug, not
+    the one sheared band's Couette flow (a run's salt that does not flow must read so)."""
+    ref = reference_scene(SPEC)
+    salt = ref["type"] == SALT
+    eta = np.clip(ref.y / SPEC.salt_thickness, 0.0, 1.0)
+    sheared = (ref.x > 2000.0) & (ref.x < 2060.0)
+    u = np.where(ref.x < 1500.0, 0.0, np.where(sheared, 300.0 * eta, 200.0))
+    cur = displaced(ref, salt, np.column_stack([u[salt], np.zeros(salt.sum())]))
+    regions = {g["region"]: g for g in outcomes_of(cur, ref, fault_x=[1500.0])["salt_flow"]["regions"]}
+    hw = regions["hanging wall"]
+    assert hw["counts"]["Couette"] >= 1 and hw["counts"]["plug"] >= 5
+    assert (hw["character"], hw["direction"]) == ("plug", "right")
+    assert hw["n_dominant"] == hw["counts"]["plug"]
+    assert regions["footwall"]["character"] == "static"
+
+
 # ------------------------------------------------------------ rigid cover, walls
 
 def test_rigid_cover_moves_as_one_block_without_faults():

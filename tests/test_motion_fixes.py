@@ -578,3 +578,18 @@ def test_wall_errors(lmp, spec, words):
 ])
 def test_wall_setup_errors(lmp, head, words):
     assert_error(lmp(head + "saltdem/wall 1 -10 0 10 0 1\n"), "saltdem/wall", *words)
+
+
+@pytest.mark.parametrize("style", ["saltdem/nve/omp", "saltdem/nve"])
+def test_messages_name_the_style_given(lmp, style):
+    """A fix's messages name the style it was given as (the /omp variant included)."""
+    deck = """units si
+dimension 2
+atom_style sphere
+boundary p p p
+region box block 0 10 0 10 -1 1
+create_box 1 box
+create_atoms 1 single 5 5 0
+fix 1 all {} inertia 0.5
+""".format(style)
+    assert_error(lmp(deck), f"Fix {style}: inertia 0.5 must be >= 1")

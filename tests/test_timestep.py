@@ -1,6 +1,7 @@
 """saltdem/timestep (dt from the styles' stable limit) and pair saltdem/viscous with every
 combination of its laws, alone and under pair hybrid (a deck whose viscous pairs are all
 'contact' crashed in the force pass before: the continuity sum had no array)."""
+import math
 import re
 
 import pytest
@@ -126,3 +127,22 @@ def test_bad_fraction_is_refused(lmp, step, words):
 def test_needs_a_saltdem_pair_style(lmp):
     r = lmp(deck("gran/hooke 1e5 NULL 0 NULL 0.5 0", [("* *")], step="saltdem/timestep 0.5"))
     assert_error(r, "needs a SaltDEM pair style")
+
+
+def test_limit_skips_a_pair_that_another_substyle_computes(lmp):
+    """pair hybrid: types 1 and 2 are both saltdem/viscous types, but pair 1 2 is given to
+    saltdem/cohesive.  The viscous sub-style's limit comes from the pairs it computes (1 1,
+    2 2, 1 3), each with the coefficients init_one() derived; before, the limit mixed 1 2 from
+    1 1 and 2 2 itself and took that pair's limit (half of 1 1's here: the light type 1 with the
+    series viscosity of a 100x more viscous type 2), which no pair of the run has."""
+    coeffs = ["1 1 saltdem/viscous 5e8 5e9 contact 0.5", "2 2 saltdem/viscous 5e10 5e9 contact 0.5",
+              f"1 2 {COH}", "1 3 saltdem/viscous 5e8 5e9 contact 0.5", f"2 3 {COH}", "3 3 none"]
+    step = "set type 2 density/disc 2.2e6\nsaltdem/timestep 0.85"
+    r = lmp(deck("hybrid saltdem/cohesive saltdem/viscous", coeffs, step=step, nrun=2))
+    check_ok(r)
+    m1 = 2200 * math.pi * 9.5 ** 2
+    lim = 0.5 * 20 * m1 / (5e8 * (1 + 3 * 1.0))    # viscfactor S m / (calibration eta (1 + 3 ratio))
+    dt, _, got = limits(r.out)
+    assert got == pytest.approx(lim, rel=1e-5)
+    line = [l for l in r.out.splitlines() if l.startswith("Pair style saltdem/viscous: timestep")]
+    assert len(line) == 1 and "of types 1 1" in line[0], line

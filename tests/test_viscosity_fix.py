@@ -137,3 +137,27 @@ def test_needs_the_viscous_pair(lmp):
     deck = BASE.replace("pair_style saltdem/viscous\npair_coeff * * 1.0 0 fluid 28 1e8",
                         "pair_style saltdem/cohesive\npair_coeff * * 1e9 0 0.5 0 0 0")
     assert_error(lmp(deck + FIX + "\nrun 0\n", dt=1e-6), "saltdem/viscosity", "saltdem/viscous")
+
+
+def test_reads_the_inertia_factor_from_the_integrator(lmp):
+    """S is given once, in fix saltdem/nve: the fix reads it through the salt pair style's
+    extract("inertia") (also from an integrator defined after it), and the model Reynolds
+    number is S rho V L / eta."""
+    deck = BASE.replace("fix nve all saltdem/nve\n", "") + FIX + \
+        "\nfix nve all saltdem/nve inertia 20\nthermo_style custom step f_scale[1]\nrun 0\n"
+    r = lmp(deck, dt=1e-6)
+    check_ok(r)
+    assert r.thermo()["f_scale[1]"][0] == pytest.approx(20 * 2200 * 0.05 * 1000 / 5e8, rel=1e-12)
+    assert "inertia x20 (salt's integrator)" in r.out
+
+
+@pytest.mark.parametrize("given,ok", [(20, True), (10, False)])
+def test_inertia_keyword_must_agree_with_the_integrator(lmp, given, ok):
+    deck = BASE.replace("saltdem/nve\n", "saltdem/nve inertia 20\n") + FIX + \
+        f" inertia {given}\nrun 0\n"
+    r = lmp(deck, dt=1e-6)
+    if ok:
+        check_ok(r)
+    else:
+        assert_error(r, "saltdem/viscosity", "inertia 10 differs from the inertia factor 20",
+                     "drop the keyword")

@@ -16,12 +16,13 @@
 using namespace LAMMPS_NS;
 
 FixSaltdemFault::FixSaltdemFault(LAMMPS *lmp, int narg, char **arg) :
-    FixSaltdemMotion(lmp, narg, arg), dip(0.0), sense(1)
+    FixSaltdemMotion(lmp, narg, arg), dip(0.0)
 {
-  usage = "fix ID group saltdem/fault dip D rate V target T [toward right|left] "
-          "[at_target stop|end]";
+  has_toward = 1;
+  usage = fmt::format("fix ID group {} dip D rate V target T [toward right|left] "
+          "[at_target stop|end]", style);
   parse(narg, arg);
-  if (dip == 0.0) error->all(FLERR, "Fix saltdem/fault: dip is required; usage: {}", usage);
+  if (dip == 0.0) error->all(FLERR, "Fix {}: dip is required; usage: {}", style, usage);
 
   // the hanging wall of a fault dipping toward +x (right) moves down and right
   const double a = dip * M_PI / 180.0;
@@ -33,11 +34,7 @@ int FixSaltdemFault::parse_keyword(const std::string &kw, const std::string &val
 {
   if (kw == "dip")
     dip = angle_arg(kw, val);
-  else if (kw == "toward") {
-    if (val == "right") sense = 1;
-    else if (val == "left") sense = -1;
-    else error->all(FLERR, "Fix saltdem/fault: toward '{}' must be right or left", val);
-  } else
+  else
     return 0;
   return 1;
 }

@@ -21,8 +21,7 @@ class FixSaltdemFault : public FixSaltdemMotion {
   double compute_vector(int) override;
 
  protected:
-  double dip;    // fault dip (degrees)
-  int sense;     // +1: the fault dips toward +x, -1: toward -x
+  double dip;    // fault dip (degrees); sense: +1 the fault dips toward +x, -1 toward -x
   int parse_keyword(const std::string &, const std::string &) override;
 };
 

@@ -24,12 +24,12 @@ using namespace LAMMPS_NS;
 FixSaltdemKeystone::FixSaltdemKeystone(LAMMPS *lmp, int narg, char **arg) :
     FixSaltdemMotion(lmp, narg, arg), dip(0.0), ikeystone(-1)
 {
-  usage = "fix ID group saltdem/keystone dip D keystone GROUP rate V target T "
-          "[at_target stop|end]";
+  usage = fmt::format("fix ID group {} dip D keystone GROUP rate V target T "
+          "[at_target stop|end]", style);
   parse(narg, arg);
-  if (dip == 0.0) error->all(FLERR, "Fix saltdem/keystone: dip is required; usage: {}", usage);
+  if (dip == 0.0) error->all(FLERR, "Fix {}: dip is required; usage: {}", style, usage);
   if (ikeystone < 0)
-    error->all(FLERR, "Fix saltdem/keystone: keystone GROUP is required; usage: {}", usage);
+    error->all(FLERR, "Fix {}: keystone GROUP is required; usage: {}", style, usage);
 
   const double a = dip * M_PI / 180.0;
   blocks.push_back({ikeystone, {cos(a), -sin(a), 0.0}});
@@ -63,12 +63,12 @@ void FixSaltdemKeystone::init()
   bigint all[2], mine[2] = {outside, right};
   MPI_Allreduce(mine, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
   if (all[0] > 0)
-    error->all(FLERR, "Fix saltdem/keystone {}: {} atoms of keystone group {} are not in the fix "
-               "group {}; the fix group holds the keystone and the right block", id, all[0],
+    error->all(FLERR, "Fix {} {}: {} atoms of keystone group {} are not in the fix group {}; the "
+               "fix group holds the keystone and the right block", style, id, all[0],
                group->names[ikeystone], group->names[igroup]);
   if (all[1] == 0)
-    error->all(FLERR, "Fix saltdem/keystone {}: the right block (fix group {} minus keystone group "
-               "{}) has no atoms", id, group->names[igroup], group->names[ikeystone]);
+    error->all(FLERR, "Fix {} {}: the right block (fix group {} minus keystone group {}) has no "
+               "atoms", style, id, group->names[igroup], group->names[ikeystone]);
 }
 
 /* 1 left-fault displacement, 2 right-fault displacement (equal by construction),

@@ -31,7 +31,8 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), ended(0), disp(0.0), warned(0)
+    Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), ended(0), disp(0.0), sense(1),
+    has_toward(0), warned(0)
 {
   if (domain->dimension != 2) error->all(FLERR, "Fix {} requires dimension 2", style);
   time_integrate = 1;
@@ -55,6 +56,10 @@ void FixSaltdemMotion::parse(int narg, char **arg)
       if (val == "stop") end_run = 0;
       else if (val == "end") end_run = 1;
       else error->all(FLERR, "Fix {}: at_target '{}' must be stop or end", style, val);
+    } else if (kw == "toward" && has_toward) {
+      if (val == "right") sense = 1;
+      else if (val == "left") sense = -1;
+      else error->all(FLERR, "Fix {}: toward '{}' must be right or left", style, val);
     } else if (!parse_keyword(kw, val))
       error->all(FLERR, "Fix {}: unknown keyword '{}'; usage: {}", style, kw, usage);
   }

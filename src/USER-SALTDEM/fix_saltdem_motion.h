@@ -42,13 +42,16 @@ class FixSaltdemMotion : public Fix {
   int end_run;      // 1: end the run when the target is reached
   int ended;        // 1: this fix ended the current run (post_run lets the next one go)
   double disp;      // drive displacement so far (m), kept in restart files
+  int sense;        // toward right|left: +1 the motion goes toward +x, -1 toward -x
+  int has_toward;   // 1: the fix takes the keyword 'toward right|left' (set before parse())
   int warned;       // the warning that a step moves a block by much of a disc radius was given
   // a step that moves a block by more than this fraction of the smallest disc radius warns
   static constexpr double JUMP_FRACTION = 0.1;
   std::string usage;
 
-  // parse the keywords shared by all motion fixes and call parse_keyword() for the
-  // others (it returns 1 if it took arg[iarg], arg[iarg+1]); then check rate and target
+  // parse the keywords shared by all motion fixes (rate, target, at_target, and toward where
+  // has_toward is set) and call parse_keyword() for the others (it returns 1 if it took
+  // arg[iarg], arg[iarg+1]); then check rate and target
   void parse(int narg, char **arg);
   virtual int parse_keyword(const std::string &, const std::string &) { return 0; }
   double angle_arg(const std::string &kw, const std::string &val);    // (0,90) degrees

@@ -36,20 +36,21 @@ FixSaltdemNVE::FixSaltdemNVE(LAMMPS *lmp, int narg, char **arg) :
   time_integrate = 1;
   int iarg = 3;
   while (iarg < narg) {
-    if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, fmt::format("fix saltdem/nve {}", arg[iarg]), error);
+    if (iarg + 2 > narg)
+      utils::missing_cmd_args(FLERR, fmt::format("fix {} {}", style, arg[iarg]), error);
     if (strcmp(arg[iarg], "inertia") == 0) {
-      inertia = SaltDEM::numeric(FLERR, arg[iarg + 1], "Fix saltdem/nve: inertia", lmp);
+      inertia = SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Fix {}: inertia", style), lmp);
       if (inertia < 1.0)
-        error->all(FLERR, "Fix saltdem/nve: inertia {} must be >= 1 (1 = true inertia)", inertia);
+        error->all(FLERR, "Fix {}: inertia {} must be >= 1 (1 = true inertia)", style, inertia);
     } else if (strcmp(arg[iarg], "check") == 0) {
       check_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-      if (check_every < 0) error->all(FLERR, "Fix saltdem/nve: check {} must be >= 0", check_every);
+      if (check_every < 0) error->all(FLERR, "Fix {}: check {} must be >= 0", style, check_every);
     } else
-      error->all(FLERR, "Fix saltdem/nve: unknown keyword '{}' (expected: inertia, check)", arg[iarg]);
+      error->all(FLERR, "Fix {}: unknown keyword '{}' (expected: inertia, check)", style, arg[iarg]);
     iarg += 2;
   }
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
-    error->all(FLERR, "Fix saltdem/nve requires atom style sphere (radius, rmass, omega, torque)");
+    error->all(FLERR, "Fix {} requires atom style sphere (radius, rmass, omega, torque)", style);
 }
 
 int FixSaltdemNVE::setmask()
@@ -63,8 +64,8 @@ void FixSaltdemNVE::init()
   inertia_factor = (domain->dimension == 2) ? 0.5 : 0.4;
   if (group->count(igroup) == 0)
     error->all(FLERR,
-               "Fix saltdem/nve {}: group {} has no atoms, nothing would be integrated; check "
-               "the group definition (or unfix {})", id, group->names[igroup], id);
+               "Fix {} {}: group {} has no atoms, nothing would be integrated; check "
+               "the group definition (or unfix {})", style, id, group->names[igroup], id);
 
   // a disc without radius or mass has no finite inertia: name it now, not as a NaN later
   bigint nbad = 0;
@@ -82,10 +83,10 @@ void FixSaltdemNVE::init()
   MPI_Allreduce(&first, &firstall, 1, MPI_LMP_TAGINT, MPI_MIN, world);
   if (nbadall)
     error->all(FLERR,
-               "Fix saltdem/nve {}: {} atom(s) of group {} have a radius or mass that is not "
+               "Fix {} {}: {} atom(s) of group {} have a radius or mass that is not "
                "> 0 (the first is atom {}); give every integrated disc a diameter and a mass "
                "('set ... diameter', 'set ... density/disc') before the run",
-               id, nbadall, group->names[igroup], firstall);
+               style, id, nbadall, group->names[igroup], firstall);
 }
 
 void FixSaltdemNVE::reset_dt()
@@ -155,10 +156,10 @@ void FixSaltdemNVE::check_finite()
     if (!(mask[i] & groupbit)) continue;
     if (!std::isfinite(v[i][0] + v[i][1] + v[i][2] + x[i][0] + x[i][1] + x[i][2]))
       error->one(FLERR,
-                 "Fix saltdem/nve: atom {} (type {}) has a non-finite position or velocity at "
+                 "Fix {}: atom {} (type {}) has a non-finite position or velocity at "
                  "step {}: the run is numerically unstable. Reduce the timestep (pair styles "
                  "saltdem/* report their stable limit) or raise the inertia of viscous discs",
-                 atom->tag[i], atom->type[i], update->ntimestep);
+                 style, atom->tag[i], atom->type[i], update->ntimestep);
   }
 
   // LAMMPS deletes an atom that leaves through a non-periodic boundary and by default reports
@@ -169,19 +170,19 @@ void FixSaltdemNVE::check_finite()
     // LAMMPS also drops an atom that jumps past the neighbouring sub-domains in one step
     if (ntotal != atom->natoms && domain->nonperiodic == 0)
       error->all(FLERR,
-                 "Fix saltdem/nve: {} atom(s) lost by step {} (original {}, current {}) in a "
+                 "Fix {}: {} atom(s) lost by step {} (original {}, current {}) in a "
                  "periodic box: they jumped farther than a sub-domain in one step, a numerical "
                  "blow-up. Reduce the timestep (pair styles saltdem/* report their stable "
                  "limit) or find the force that is not checked (e.g. another fix)",
-                 atom->natoms - ntotal, update->ntimestep, atom->natoms, ntotal);
+                 style, atom->natoms - ntotal, update->ntimestep, atom->natoms, ntotal);
     if (ntotal != atom->natoms)
       error->all(FLERR,
-                 "Fix saltdem/nve: {} atom(s) lost by step {} (original {}, current {}): discs "
+                 "Fix {}: {} atom(s) lost by step {} (original {}, current {}): discs "
                  "left the box through a non-periodic boundary (or, after a numerical blow-up, "
                  "jumped past a sub-domain). Enclose the scene with wall discs, enlarge the box, "
                  "make that boundary shrink-wrapped ('boundary ... m'), or accept losses with "
                  "'thermo_modify lost ignore'",
-                 atom->natoms - ntotal, update->ntimestep, atom->natoms, ntotal);
+                 style, atom->natoms - ntotal, update->ntimestep, atom->natoms, ntotal);
   }
 }
 

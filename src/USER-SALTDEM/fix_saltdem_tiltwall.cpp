@@ -23,16 +23,17 @@
 using namespace LAMMPS_NS;
 
 FixSaltdemTiltwall::FixSaltdemTiltwall(LAMMPS *lmp, int narg, char **arg) :
-    FixSaltdemMotion(lmp, narg, arg), tilt(0.0), sense(1), g(9.81), igravity(-1)
+    FixSaltdemMotion(lmp, narg, arg), tilt(0.0), g(9.81), igravity(-1)
 {
-  usage = "fix ID group saltdem/tiltwall tilt A rate V target T [toward right|left] "
-          "[gravity GROUP] [g G] [at_target stop|end]";
+  has_toward = 1;
+  usage = fmt::format("fix ID group {} tilt A rate V target T [toward right|left] "
+          "[gravity GROUP] [g G] [at_target stop|end]", style);
   parse(narg, arg);
-  if (tilt == 0.0) error->all(FLERR, "Fix saltdem/tiltwall: tilt is required; usage: {}", usage);
-  if (g <= 0.0) error->all(FLERR, "Fix saltdem/tiltwall: g = {} must be > 0 (m/s^2)", g);
+  if (tilt == 0.0) error->all(FLERR, "Fix {}: tilt is required; usage: {}", style, usage);
+  if (g <= 0.0) error->all(FLERR, "Fix {}: g = {} must be > 0 (m/s^2)", style, g);
   if (igravity == igroup)
-    error->all(FLERR, "Fix saltdem/tiltwall: the gravity group must be the discs that move "
-               "freely, not the wall group {}", group->names[igroup]);
+    error->all(FLERR, "Fix {}: the gravity group must be the discs that move freely, not the "
+               "wall group {}", style, group->names[igroup]);
   blocks.push_back({-1, {double(sense), 0.0, 0.0}});
   size_vector = 3;
 }
@@ -47,14 +48,10 @@ int FixSaltdemTiltwall::parse_keyword(const std::string &kw, const std::string &
 {
   if (kw == "tilt")
     tilt = angle_arg(kw, val);
-  else if (kw == "toward") {
-    if (val == "right") sense = 1;
-    else if (val == "left") sense = -1;
-    else error->all(FLERR, "Fix saltdem/tiltwall: toward '{}' must be right or left", val);
-  } else if (kw == "gravity")
+  else if (kw == "gravity")
     igravity = group_arg(kw, val);
   else if (kw == "g")
-    g = SaltDEM::numeric(FLERR, val.c_str(), "Fix saltdem/tiltwall: g", lmp);
+    g = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: g", style), lmp);
   else
     return 0;
   return 1;

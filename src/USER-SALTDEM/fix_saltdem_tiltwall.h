@@ -23,8 +23,8 @@ class FixSaltdemTiltwall : public FixSaltdemMotion {
   double compute_vector(int) override;
 
  protected:
-  double tilt;                // tilt of the model (degrees)
-  int sense;                  // +1: the model dips toward +x and the right wall moves out
+  double tilt;                // tilt of the model (degrees); sense +1: it dips toward +x and
+                              // the right wall moves out
   double g;                   // gravitational acceleration (m/s^2)
   int igravity;               // group that feels gravity, -1: none (the deck applies it)
   std::string gravity_id;     // internal fix gravity

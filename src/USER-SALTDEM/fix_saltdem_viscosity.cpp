@@ -18,13 +18,12 @@
 #include "error.h"
 #include "force.h"
 #include "pair.h"
-
-#include <algorithm>
-#include <vector>
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -33,26 +32,27 @@ static constexpr double YEAR = 365.25 * 24.0 * 3600.0;
 
 FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), lambda(0.0), eta_model(0.0), eta_natural(0.0), rate(0.0), length(0.0),
-    density(0.0), inertia(1.0), warn_re(0.1), t0(0.0)
+    density(0.0), inertia(1.0), inertia_given(0.0), warn_re(0.1), t0(0.0), npairs(0),
+    reported(0.0)
 {
-  const char *usage = "fix ID group saltdem/viscosity lambda L (natural eta | model eta) "
-                      "rate V length L density rho [inertia S] [warn Re]";
-  if (narg < 5) utils::missing_cmd_args(FLERR, "fix saltdem/viscosity", error);
+  const std::string usage = fmt::format("fix ID group {} lambda L (natural eta | model eta) rate "
+                                        "V length L density rho [inertia S] [warn Re]", style);
+  if (narg < 5) utils::missing_cmd_args(FLERR, fmt::format("fix {}", style), error);
   if (strcmp(arg[3], "lambda") != 0)
-    error->all(FLERR, "Fix saltdem/viscosity: expected 'lambda' after the style, got '{}'; usage: {}",
+    error->all(FLERR, "Fix {}: expected 'lambda' after the style, got '{}'; usage: {}", style,
                arg[3], usage);
-  lambda = SaltDEM::numeric(FLERR, arg[4], "Fix saltdem/viscosity: lambda", lmp);
-  if (lambda <= 0.0) error->all(FLERR, "Fix saltdem/viscosity: lambda = {} must be > 0", lambda);
+  lambda = SaltDEM::numeric(FLERR, arg[4], fmt::format("Fix {}: lambda", style), lmp);
+  if (lambda <= 0.0) error->all(FLERR, "Fix {}: lambda = {} must be > 0", style, lambda);
 
   int iarg = 5;
   while (iarg < narg) {
     if (iarg + 2 > narg)
-      utils::missing_cmd_args(FLERR, fmt::format("fix saltdem/viscosity {}", arg[iarg]), error);
+      utils::missing_cmd_args(FLERR, fmt::format("fix {} {}", style, arg[iarg]), error);
     const std::string kw = arg[iarg];
     const double v =
-        SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Fix saltdem/viscosity: {}", kw), lmp);
+        SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Fix {}: {}", style, kw), lmp);
     auto positive = [&](double x) {
-      if (x <= 0.0) error->all(FLERR, "Fix saltdem/viscosity: {} = {} must be > 0", kw, x);
+      if (x <= 0.0) error->all(FLERR, "Fix {}: {} = {} must be > 0", style, kw, x);
       return x;
     };
     if (kw == "natural") eta_natural = positive(v);
@@ -61,51 +61,37 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
     else if (kw == "length") length = positive(v);
     else if (kw == "density") density = positive(v);
     else if (kw == "inertia") {
-      if (v < 1.0) error->all(FLERR, "Fix saltdem/viscosity: inertia = {} must be >= 1", v);
-      inertia = v;
+      if (v < 1.0) error->all(FLERR, "Fix {}: inertia = {} must be >= 1", style, v);
+      inertia_given = v;
     } else if (kw == "warn") warn_re = positive(v);
     else
-      error->all(FLERR, "Fix saltdem/viscosity: unknown keyword '{}'; usage: {}", kw, usage);
+      error->all(FLERR, "Fix {}: unknown keyword '{}'; usage: {}", style, kw, usage);
     iarg += 2;
   }
   if ((eta_natural > 0.0) == (eta_model > 0.0))
-    error->all(FLERR, "Fix saltdem/viscosity: give exactly one of 'natural' and 'model'; usage: {}",
-               usage);
+    error->all(FLERR, "Fix {}: give exactly one of 'natural' and 'model'; usage: {}", style, usage);
   for (auto &need : {std::make_pair("rate", rate), std::make_pair("length", length),
                      std::make_pair("density", density)})
     if (need.second <= 0.0)
-      error->all(FLERR, "Fix saltdem/viscosity: keyword '{}' is required; usage: {}", need.first,
-                 usage);
+      error->all(FLERR, "Fix {}: keyword '{}' is required; usage: {}", style, need.first, usage);
   if (eta_natural > 0.0) eta_model = eta_natural / lambda;
   else eta_natural = eta_model * lambda;
   // the derived viscosities go to the pair style (its bounds) and the reported numbers must be
   // finite
   if (!SaltDEM::in_bounds(eta_model) || !SaltDEM::in_bounds(eta_natural))
-    error->all(FLERR, "Fix saltdem/viscosity: lambda = {} gives a model viscosity {} and a natural "
-               "one {} Pa s beyond the bounds of SaltDEM coefficients [{:g}, {:g}]; check lambda "
-               "and the viscosity given", lambda, eta_model, eta_natural, SaltDEM::MIN_VALUE,
+    error->all(FLERR, "Fix {}: lambda = {} gives a model viscosity {} and a natural one {} Pa s "
+               "beyond the bounds of SaltDEM coefficients [{:g}, {:g}]; check lambda and the "
+               "viscosity given", style, lambda, eta_model, eta_natural, SaltDEM::MIN_VALUE,
                SaltDEM::MAX_VALUE);
-  for (double q : {reynolds_model(), density * (rate / lambda) * length / eta_natural,
-                   rate / length, rate / (lambda * length), lambda / YEAR})
-    if (!std::isfinite(q) || q == 0.0)
-      error->all(FLERR, "Fix saltdem/viscosity: the Reynolds numbers, strain rates and time scale "
-                 "from lambda = {}, rate = {}, length = {}, density = {}, inertia = {} and the "
-                 "viscosity {} Pa s overflow or vanish ({}); use values of physical size",
-                 lambda, rate, length, density, inertia, eta_model, q);
+  inertia = (inertia_given > 0.0) ? inertia_given : 1.0;
+  check_finite();
 
   // set the viscosity of the salt's pair style now, so that the next run
   // (and its stable time step check) uses it: every saltdem/viscous sub-style of a hybrid
-  // (pair_match returns the n-th of them, and the only one again past the last)
-  std::vector<Pair *> salts;
-  for (int n = 1; n <= 64; n++) {
-    Pair *p = force->pair_match("saltdem/viscous", 0, n);
-    if (!p || std::find(salts.begin(), salts.end(), p) != salts.end()) break;
-    salts.push_back(p);
-  }
+  const auto salts = viscous_pairs();
   if (salts.empty())
-    error->all(FLERR, "Fix saltdem/viscosity needs pair style saltdem/viscous (alone or in "
-               "pair_style hybrid) with its coefficients set before the fix is defined");
-  int count = 0;
+    error->all(FLERR, "Fix {} needs pair style saltdem/viscous (alone or in pair_style hybrid) "
+               "with its coefficients set before the fix is defined", style);
   for (Pair *pair : salts) {
     int dim = 0;
     auto eta = (double **) pair->extract("eta", dim);
@@ -114,12 +100,15 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
       for (int j = i; j <= atom->ntypes; j++)
         if (pair->setflag && pair->setflag[i][j]) {
           eta[i][j] = eta[j][i] = eta_model;
-          count++;
+          npairs++;
         }
   }
-  if (count == 0)
-    error->all(FLERR, "Fix saltdem/viscosity: pair style saltdem/viscous needs its coefficients "
-               "set before the fix is defined: give its pair_coeff commands first");
+  if (npairs == 0)
+    error->all(FLERR, "Fix {}: pair style saltdem/viscous needs its coefficients set before the "
+               "fix is defined: give its pair_coeff commands first", style);
+  // the inertia factor of the salt's discs as far as the integrators are defined yet (init()
+  // reads it again): the Reynolds number is also wanted between runs
+  if (inertia_given == 0.0) inertia = salt_inertia(salts);
 
   t0 = model_time();
   vector_flag = 1;
@@ -129,18 +118,49 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
 
   if (comm->me == 0)
-    utils::logmesg(lmp,
-                   "fix saltdem/viscosity: lambda {:.4g}: viscosity model {:.4g} Pa s, natural "
-                   "{:.4g} Pa s (set on {} type pairs)\n"
-                   "  driving rate model {:.4g} m/s, natural {:.4g} m/s = {:.4g} m/ka; length "
-                   "{:.4g} m, density {:.4g} kg/m^3, inertia x{:.4g}\n"
-                   "  Reynolds number model {:.3g}, natural {:.3g}; strain rate model {:.3g} 1/s, "
-                   "natural {:.3g} 1/s\n"
-                   "  1 s of model time is {:.4g} years of natural time\n",
-                   lambda, eta_model, eta_natural, count, rate, rate / lambda,
-                   rate / lambda * YEAR * 1000.0, length, density, inertia, reynolds_model(),
-                   density * (rate / lambda) * length / eta_natural, rate / length,
-                   rate / (lambda * length), lambda / YEAR);
+    utils::logmesg(lmp, "fix {}: lambda {:.4g}: viscosity model {:.4g} Pa s, natural {:.4g} Pa s "
+                   "(set on {} type pairs)\n", style, lambda, eta_model, eta_natural, npairs);
+}
+
+/* every saltdem/viscous style: the pair style or the sub-styles of pair hybrid (pair_match
+   returns the n-th of them, and the only one again past the last) */
+
+std::vector<Pair *> FixSaltdemViscosity::viscous_pairs()
+{
+  std::vector<Pair *> salts;
+  for (int n = 1; n <= 64; n++) {
+    Pair *p = force->pair_match("saltdem/viscous", 0, n);
+    if (!p || std::find(salts.begin(), salts.end(), p) != salts.end()) break;
+    salts.push_back(p);
+  }
+  return salts;
+}
+
+/* S: what the salt's pair styles report through extract("inertia") (the inertia factor of
+   the fix saltdem/nve integrating the salt's discs); the largest of several.  Collective. */
+
+double FixSaltdemViscosity::salt_inertia(const std::vector<Pair *> &salts)
+{
+  double s = 1.0;
+  for (Pair *pair : salts) {
+    int dim = 0;
+    auto v = (double *) pair->extract("inertia", dim);
+    if (v) s = MAX(s, *v);
+  }
+  return s;
+}
+
+/* the reported numbers must be finite and non-zero */
+
+void FixSaltdemViscosity::check_finite()
+{
+  for (double q : {reynolds_model(), density * (rate / lambda) * length / eta_natural,
+                   rate / length, rate / (lambda * length), lambda / YEAR})
+    if (!std::isfinite(q) || q == 0.0)
+      error->all(FLERR, "Fix {}: the Reynolds numbers, strain rates and time scale from lambda "
+                 "= {}, rate = {}, length = {}, density = {}, inertia = {} and the viscosity {} "
+                 "Pa s overflow or vanish ({}); use values of physical size",
+                 style, lambda, rate, length, density, inertia, eta_model, q);
 }
 
 int FixSaltdemViscosity::setmask()
@@ -148,15 +168,45 @@ int FixSaltdemViscosity::setmask()
   return 0;
 }
 
+/* S is read from the salt's pair style, which has it from the integrator: given once, in fix
+   saltdem/nve.  The keyword 'inertia' may only repeat it. */
+
 void FixSaltdemViscosity::init()
 {
+  const auto salts = viscous_pairs();
+  if (salts.empty())
+    error->all(FLERR, "Fix {} {} needs pair style saltdem/viscous (alone or in pair_style "
+               "hybrid); the pair style was changed since the fix was defined", style, id);
+  const double s = salt_inertia(salts);
+  if (inertia_given > 0.0 && fabs(inertia_given - s) > 1e-12 * s)
+    error->all(FLERR, "Fix {} {}: inertia {} differs from the inertia factor {} of the salt's "
+               "discs (fix saltdem/nve ... inertia S, as pair style saltdem/viscous reports it); "
+               "drop the keyword, the fix reads S from the integrator", style, id,
+               inertia_given, s);
+  inertia = s;
+  check_finite();
+
+  if (comm->me == 0 && reported != inertia)
+    utils::logmesg(lmp,
+                   "fix {}: lambda {:.4g}: viscosity model {:.4g} Pa s, natural {:.4g} Pa s\n"
+                   "  driving rate model {:.4g} m/s, natural {:.4g} m/s = {:.4g} m/ka; length "
+                   "{:.4g} m, density {:.4g} kg/m^3, inertia x{:.4g} (salt's integrator)\n"
+                   "  Reynolds number model {:.3g}, natural {:.3g}; strain rate model {:.3g} 1/s, "
+                   "natural {:.3g} 1/s\n"
+                   "  1 s of model time is {:.4g} years of natural time\n",
+                   style, lambda, eta_model, eta_natural, rate, rate / lambda,
+                   rate / lambda * YEAR * 1000.0, length, density, inertia, reynolds_model(),
+                   density * (rate / lambda) * length / eta_natural, rate / length,
+                   rate / (lambda * length), lambda / YEAR);
+  reported = inertia;
+
   const double re = reynolds_model();
   if (re > warn_re && comm->me == 0)
     error->warning(FLERR,
-                   "Fix saltdem/viscosity: the model Reynolds number {:.3g} (rho S V L / eta) "
-                   "exceeds {:.3g}: inertia is no longer negligible, the flow is not the scaled "
-                   "natural flow. Lower the rate, the inertia factor or lambda",
-                   re, warn_re);
+                   "Fix {}: the model Reynolds number {:.3g} (rho S V L / eta) exceeds {:.3g}: "
+                   "inertia is no longer negligible, the flow is not the scaled natural flow. "
+                   "Lower the rate, the inertia factor or lambda",
+                   style, re, warn_re);
 }
 
 double FixSaltdemViscosity::model_time() const

@@ -22,8 +22,7 @@ using namespace LAMMPS_NS;
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
     Pair(lmp), name(style_name), hist_id(history_id), fix_history(nullptr), fix_rebuild(nullptr),
     transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr),
-    reach_abs(nullptr), dtfactor(0.2), tbounds_built(-1), tbounds_inum(-1), recheck(false),
-    masses_cached(false)
+    reach_abs(nullptr), dtfactor(0.2), tbounds_built(-1), tbounds_inum(-1), recheck(false)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;
@@ -88,6 +87,11 @@ void PairSaltdem::check_types(int narg, char **arg, int nmin, const char *usage,
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 }
 
+void PairSaltdem::no_coeffs_set()
+{
+  error->all(FLERR, "Incorrect args for pair coefficients" + utils::errorurl(21));
+}
+
 /* ---------------------------------------------------------------------- */
 
 void PairSaltdem::init_style()
@@ -137,9 +141,15 @@ void PairSaltdem::init_style()
   for (int i = 0; i < atom->nlocal; i++)
     onerad[atom->type[i]] = MAX(onerad[atom->type[i]], atom->radius[i]);
   MPI_Allreduce(&onerad[1], &maxrad[1], n, MPI_DOUBLE, MPI_MAX, world);
+}
 
-  // the time step must be stable for the laws of every SaltDEM style and the lightest
-  // particles; the stability margin of this style belongs in every run's log
+/* the time step check of a run or minimization, after init_one() has derived every type
+   pair's coefficients (Force::setup(), or PairHybrid::setup() for each sub-style): the time
+   step must be stable for the laws of every SaltDEM style and the lightest particles; the
+   stability margin of this style belongs in every run's log */
+
+void PairSaltdem::setup()
+{
   const auto limits = check_timestep("");
   for (const auto &l : limits)
     if (l.pair == this && !l.why.empty() && comm->me == 0)
@@ -147,19 +157,52 @@ void PairSaltdem::init_style()
                      name, update->dt, update->dt / l.dt, l.dt, l.why);
 }
 
+/* I,J is this style's: given to it by pair_coeff, or (not given to any style) mixed from its
+   own I,I and J,J, as Pair::init() and PairHybrid::init_one() mix */
+
+bool PairSaltdem::owns(int i, int j) const
+{
+  if (setflag[i][j]) return true;
+  if (!setflag[i][i] || !setflag[j][j]) return false;
+  const Pair *top = force->pair;
+  return top == this || !top || !top->setflag || !top->setflag[i][j];
+}
+
+void PairSaltdem::init_coeff(int i, int j)
+{
+  if (setflag[i][j] == 0) mix(i, j);    // Pair::init() has checked that I,I and J,J are set
+  derive(i, j);
+  memcpy(pair_params(j, i), pair_params(i, j), params_size());
+}
+
+void PairSaltdem::init_coeffs()
+{
+  if (!allocated) return;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (owns(i, j)) init_coeff(i, j);
+}
+
 double PairSaltdem::stable_limit(std::string &why, bool cached)
 {
   why.clear();
   if (!allocated) return 0.0;    // no coefficients yet
-  const bool reuse = cached && (int) mmin_cache.size() == atom->ntypes + 1;
-  if (!reuse) {
-    mmin_cache.assign(atom->ntypes + 1, -1.0);
-    min_inertial_mass(mmin_cache.data());
+  const int n = atom->ntypes;
+  if (!cached || (int) mmin_cache.size() != n + 1 || (int) mv_cache.size() != n + 1) {
+    mmin_cache.assign(n + 1, -1.0);
+    mv_cache.assign(n + 1, DBL_MAX);
+    min_inertial_mass(mmin_cache.data(), mv_cache.data());
   }
-  masses_cached = reuse;
-  const double lim = stable_dt(mmin_cache.data(), why);
-  masses_cached = false;
-  return why.empty() ? 0.0 : lim;
+  const double *mmin = mmin_cache.data(), *mv = mv_cache.data();
+  double best = 0.0;
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) {
+      if (!owns(i, j)) continue;                                  // another sub-style's pair
+      if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;               // a type without atoms
+      if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
+      pair_limit(i, j, MIN(mmin[i], mmin[j]), MIN(mv[i], mv[j]), best, why);
+    }
+  return why.empty() ? 0.0 : best;
 }
 
 /* every SaltDEM pair style present: pair_match() returns the n-th matching sub-style of a
@@ -254,18 +297,26 @@ double PairSaltdem::inertia_scale(int i)
   return scale;
 }
 
-void PairSaltdem::min_inertial_mass(double *mmin)
+void PairSaltdem::min_inertial_mass(double *mmin, double *mvmin)
 {
   const int n = atom->ntypes;
-  std::vector<double> local(n + 1, DBL_MAX);
+  const bool disc = (domain->dimension == 2);
+  std::vector<double> local(2 * (n + 1), DBL_MAX), both(2 * (n + 1));
   std::vector<bigint> count(n + 1, 0), all(n + 1);
   for (int i = 0; i < atom->nlocal; i++) {
     const double scale = inertia_scale(i);
     const int t = atom->type[i];
+    const double r = atom->radius[i];
+    const double vol = disc ? M_PI * r * r : 4.0 * M_PI / 3.0 * r * r * r;
     count[t]++;
     if (scale > 0.0) local[t] = MIN(local[t], scale * atom->rmass[i]);
+    if (scale > 0.0 && vol > 0.0) local[n + 1 + t] = MIN(local[n + 1 + t], scale * atom->rmass[i] / vol);
   }
-  MPI_Allreduce(&local[1], &mmin[1], n, MPI_DOUBLE, MPI_MIN, world);
+  MPI_Allreduce(local.data(), both.data(), 2 * (n + 1), MPI_DOUBLE, MPI_MIN, world);
+  for (int t = 1; t <= n; t++) {
+    mmin[t] = both[t];
+    mvmin[t] = both[n + 1 + t];
+  }
   MPI_Allreduce(&count[1], &all[1], n, MPI_LMP_BIGINT, MPI_SUM, world);
   for (int t = 1; t <= n; t++)
     if (all[t] == 0) mmin[t] = -1.0;    // no atoms of this type: no limit from it
@@ -275,8 +326,7 @@ void PairSaltdem::min_inertial_mass(double *mmin)
 
 double PairSaltdem::init_one(int i, int j)
 {
-  if (setflag[i][j] == 0) mix(i, j);    // Pair::init() has checked that I,I and J,J are set
-  memcpy(pair_params(j, i), pair_params(i, j), params_size());
+  init_coeff(i, j);
   extra[i][j] = extra[j][i] = range(i, j);
   reach_abs[i][j] = reach_abs[j][i] = range_abs(i, j);
 

@@ -37,6 +37,7 @@ class PairSaltdem : public Pair {
 
   void init_style() override;
   double init_one(int, int) override;
+  void setup() override;
   void write_restart(FILE *) override;
   void read_restart(FILE *) override;
   void transfer_history(double *, double *, int, int) override;
@@ -55,6 +56,9 @@ class PairSaltdem : public Pair {
   // for the re-check during a run, when a coefficient changed)
   double stable_limit(std::string &why, bool cached = false);
   const char *name_of() const { return name; }
+  // the coefficients of every type pair this style computes, mixed and derived as init_one()
+  // makes them: for saltdem/timestep, which needs the stable limit before a run's init
+  void init_coeffs();
 
   // the stable limit of every SaltDEM pair style present (the pair style, or the SaltDEM
   // sub-styles of pair hybrid, in their order), and the smallest of them (pair nullptr: nothing
@@ -154,12 +158,37 @@ class PairSaltdem : public Pair {
   virtual void *pair_params(int i, int j) = 0;    // for restart (plain-old-data)
   virtual size_t params_size() const = 0;
   virtual void mix(int i, int j) = 0;             // fill params[i][j] from i,i and j,j
+  // the derived members of params[i][j] (i <= j) from the coefficients given (init_one)
+  virtual void derive(int, int) {}
   virtual double range(int i, int j) const = 0;   // interaction range beyond contact
   virtual double range_abs(int, int) const { return 0.0; }    // range between centres
-  // the largest stable dt given the smallest inertial mass per type (DBL_MAX:
-  // walls only, -1: no atoms), through consider_limit(); `why` stays empty if nothing limits it
-  virtual double stable_dt(const double *mmin, std::string &why) = 0;
-  void min_inertial_mass(double *mmin);
+  // the stable limits of type pair i,j (i <= j, coefficients derived by init_one()) for the
+  // smallest inertial mass m of its integrated atoms and the smallest inertial mass per disc
+  // (sphere) volume mv, each passed to consider_limit(lim, best, why, reason)
+  virtual void pair_limit(int i, int j, double m, double mv, double &best, std::string &why) = 0;
+  // type pair i,j is computed by this style: set by its pair_coeff, or mixed from I,I and J,J
+  // of this style where no other sub-style of pair hybrid was given it
+  bool owns(int i, int j) const;
+  // the coefficients of type pair i <= j: mixed if not set, derived, copied to j,i
+  void init_coeff(int i, int j);
+  // the pair_coeff loop: each(i, j) for every I,J of the ranges with i <= j, which are then set
+  template <class Each> void assign_coeffs(int ilo, int ihi, int jlo, int jhi, Each &&each)
+  {
+    int count = 0;
+    for (int i = ilo; i <= ihi; i++)
+      for (int j = MAX(jlo, i); j <= jhi; j++) {
+        each(i, j);
+        setflag[i][j] = 1;
+        count++;
+      }
+    if (count == 0) no_coeffs_set();
+  }
+  void no_coeffs_set();    // the error of a pair_coeff whose I,J ranges are empty
+  // springs and dashpots of two types in series (the mixing rule of stiffnesses)
+  static double mix_series(double x, double y) { return (x + y > 0.0) ? 2.0 * x * y / (x + y) : 0.0; }
+  // per type: the smallest inertial mass (DBL_MAX: walls only, -1: no atoms) and the smallest
+  // inertial mass per disc (sphere) volume of its integrated atoms
+  void min_inertial_mass(double *mmin, double *mvmin);
   double inertia_scale(int i);
   // the first value of a style's restart settings: the layout of the coefficients and of the
   // history changes between releases, and a file of another layout must stop the run rather
@@ -195,9 +224,7 @@ class PairSaltdem : public Pair {
       why = reason();
     }
   }
-  bool masses_cached;                  // stable_dt(): the call reuses the masses of the last one
-  std::vector<double> mmin_cache;      // min_inertial_mass() of the last full stable_limit()
-  // (the last two: set by stable_limit() for stable_dt())
+  std::vector<double> mmin_cache, mv_cache;    // min_inertial_mass() of the last full stable_limit()
 };
 
 template <class Derived, int EVFLAG, int DIM, class Tally>

@@ -55,14 +55,14 @@ void PairSaltdemCohesive::settings(int narg, char **arg)
   int iarg = 0;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "dtfactor") == 0) {
-      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style saltdem/cohesive dtfactor", error);
-      dtfactor = SaltDEM::numeric(FLERR, arg[iarg + 1], "Pair style saltdem/cohesive: dtfactor", lmp);
+      if (iarg + 2 > narg)
+        utils::missing_cmd_args(FLERR, fmt::format("pair_style {} dtfactor", name), error);
+      dtfactor = SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Pair style {}: dtfactor", name), lmp);
       if (dtfactor <= 0.0 || dtfactor > 0.8)
-        error->all(FLERR, "Pair style saltdem/cohesive: dtfactor {} must be in (0, 0.8]", dtfactor);
+        error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, 0.8]", name, dtfactor);
       iarg += 2;
     } else
-      error->all(FLERR, "Pair style saltdem/cohesive: unknown keyword '{}' (expected: dtfactor)",
-                 arg[iarg]);
+      error->all(FLERR, "Pair style {}: unknown keyword '{}' (expected: dtfactor)", name, arg[iarg]);
   }
 }
 
@@ -77,7 +77,7 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
 
   SaltDEM::CohesiveParams p{};
   auto value = [&](const char *str, const char *what) {
-    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style saltdem/cohesive: {}", what), lmp);
+    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style {}: {}", name, what), lmp);
   };
   p.kn = value(arg[2], "kn");
   p.kt = value(arg[3], "kt");
@@ -86,10 +86,9 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
   p.tens = value(arg[6], "tensile");
   p.range = value(arg[7], "range");
 
-  auto positive = [&](double v, const char *name, bool strict) {
+  auto positive = [&](double v, const char *what, bool strict) {
     if (v < 0.0 || (strict && v == 0.0))
-      error->all(FLERR, "Pair style saltdem/cohesive: {} = {} must be {}", name, v,
-                 strict ? "> 0" : ">= 0");
+      error->all(FLERR, "Pair style {}: {} = {} must be {}", name, what, v, strict ? "> 0" : ">= 0");
   };
   positive(p.kn, "kn", true);
   positive(p.kt, "kt", false);
@@ -101,43 +100,38 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
   int iarg = 8;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "damp") == 0) {
-      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_coeff saltdem/cohesive damp", error);
+      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, fmt::format("pair_coeff {} damp", name), error);
       p.zeta_n = value(arg[iarg + 1], "damp zeta_n");
       p.zeta_t = value(arg[iarg + 2], "damp zeta_t");
       if (p.zeta_n < 0.0 || p.zeta_n >= 1.0 || p.zeta_t < 0.0 || p.zeta_t >= 1.0)
-        error->all(FLERR, "Pair style saltdem/cohesive: damping ratios {} {} must be in [0, 1)",
-                   p.zeta_n, p.zeta_t);
+        error->all(FLERR, "Pair style {}: damping ratios {} {} must be in [0, 1)", name, p.zeta_n,
+                   p.zeta_t);
       iarg += 3;
     } else if (strcmp(arg[iarg], "rolling") == 0) {
-      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_coeff saltdem/cohesive rolling", error);
+      if (iarg + 3 > narg)
+        utils::missing_cmd_args(FLERR, fmt::format("pair_coeff {} rolling", name), error);
       p.kr = value(arg[iarg + 1], "rolling kr");
       p.mur = value(arg[iarg + 2], "rolling mu_r");
       positive(p.kr, "rolling kr", false);
       positive(p.mur, "rolling mu_r", false);
       iarg += 3;
     } else
-      error->all(FLERR, "Pair style saltdem/cohesive: unknown pair_coeff keyword '{}'; usage: {}",
+      error->all(FLERR, "Pair style {}: unknown pair_coeff keyword '{}'; usage: {}", name,
                  arg[iarg], usage);
   }
   if (p.tens > 0.0 && p.range <= p.tens / p.kn)
     error->all(FLERR,
-               "Pair style saltdem/cohesive: range {} must exceed the elastic gap tensile/kn = {} "
-               "at which the attraction peaks",
-               p.range, p.tens / p.kn);
+               "Pair style {}: range {} must exceed the elastic gap tensile/kn = {} at which the "
+               "attraction peaks",
+               name, p.range, p.tens / p.kn);
 
+  // the damping coefficients must be finite (init_one derives them again)
   SaltDEM::cohesive_derive(p);
   if (!std::isfinite(p.cn) || !std::isfinite(p.ct))
-    error->all(FLERR, "Pair style saltdem/cohesive: the damping coefficients 2 zeta sqrt(k) = {} "
-               "{} from kn = {}, kt = {} and damp {} {} are not finite", p.cn, p.ct, p.kn, p.kt,
+    error->all(FLERR, "Pair style {}: the damping coefficients 2 zeta sqrt(k) = {} {} from kn = "
+               "{}, kt = {} and damp {} {} are not finite", name, p.cn, p.ct, p.kn, p.kt,
                p.zeta_n, p.zeta_t);
-  int count = 0;
-  for (int i = ilo; i <= ihi; i++)
-    for (int j = MAX(jlo, i); j <= jhi; j++) {
-      params[i][j] = p;
-      setflag[i][j] = 1;
-      count++;
-    }
-  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients" + utils::errorurl(21));
+  assign_coeffs(ilo, ihi, jlo, jhi, [&](int i, int j) { params[i][j] = p; });
 }
 
 /* cross types: springs in series, strengths by geometric mean (an interface
@@ -147,11 +141,10 @@ void PairSaltdemCohesive::mix(int i, int j)
 {
   const auto &a = params[i][i];
   const auto &b = params[j][j];
-  auto series = [](double x, double y) { return (x + y > 0.0) ? 2.0 * x * y / (x + y) : 0.0; };
   SaltDEM::CohesiveParams &p = params[i][j];
-  p.kn = series(a.kn, b.kn);
-  p.kt = series(a.kt, b.kt);
-  p.kr = series(a.kr, b.kr);
+  p.kn = mix_series(a.kn, b.kn);
+  p.kt = mix_series(a.kt, b.kt);
+  p.kr = mix_series(a.kr, b.kr);
   p.mu = sqrt(a.mu * b.mu);
   p.coh = sqrt(a.coh * b.coh);
   p.tens = sqrt(a.tens * b.tens);
@@ -160,7 +153,13 @@ void PairSaltdemCohesive::mix(int i, int j)
   p.zeta_n = 0.5 * (a.zeta_n + b.zeta_n);
   p.zeta_t = 0.5 * (a.zeta_t + b.zeta_t);
   if (p.tens > 0.0 && p.range <= p.tens / p.kn) p.range = 1.01 * p.tens / p.kn;
-  SaltDEM::cohesive_derive(p);
+}
+
+/* the damping coefficients per sqrt(reduced mass) */
+
+void PairSaltdemCohesive::derive(int i, int j)
+{
+  SaltDEM::cohesive_derive(params[i][j]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -173,9 +172,9 @@ void PairSaltdemCohesive::init_style()
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && params[i][j].kr > 0.0) want = true;
   if (fix_history && want != rolling)
-    error->all(FLERR, "Pair style saltdem/cohesive: rolling resistance was {} after the first run; "
-               "set it before the first run (or issue 'pair_style none' and define the pair style again)",
-               want ? "switched on" : "switched off");
+    error->all(FLERR, "Pair style {}: rolling resistance was {} after the first run; set it "
+               "before the first run (or issue 'pair_style none' and define the pair style again)",
+               name, want ? "switched on" : "switched off");
   rolling = want;
   size_history = rolling ? 6 : 3;
   delete[] transfer_factor;
@@ -190,34 +189,22 @@ void PairSaltdemCohesive::init_style()
   PairSaltdem::init_style();
 }
 
-/* The stiffest oscillator per type pair: the normal spring, or the
-   tangential spring that also turns the disc (1/m + l^2/I = 3/m for a disc,
-   3.5/m for a sphere).  Stable dt = dtfactor * sqrt(m_min / k). */
+/* The stiffest oscillator of the pair: the normal spring, or the tangential spring that also
+   turns the disc (SaltDEM::rotation_factor).  Stable dt = dtfactor * sqrt(m_min / k). */
 
-double PairSaltdemCohesive::stable_dt(const double *mmin, std::string &why)
+void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, double &best,
+                                     std::string &why)
 {
-  const double rot = (domain->dimension == 2) ? 3.0 : 3.5;
-  double best = 0.0;
-  for (int i = 1; i <= atom->ntypes; i++)
-    for (int j = i; j <= atom->ntypes; j++) {
-      if (!setflag[i][j]) {
-        if (!setflag[i][i] || !setflag[j][j]) continue;    // another hybrid sub-style's pair
-        mix(i, j);                                          // init_one() has not run yet
-      }
-      if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;               // a type without atoms
-      if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
-      const auto &p = params[i][j];
-      const double m = MIN(mmin[i], mmin[j]);
-      const bool tang = rot * p.kt > p.kn;
-      const double k = tang ? rot * p.kt : p.kn;
-      consider_limit(dtfactor * sqrt(m / k), best, why, [&] {
-        return fmt::format("{} = {:.6g} of types {} {} with the lightest mass {:.6g} "
-                           "(dt < {} * sqrt(m/{}))",
-                           tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, dtfactor,
-                           tang ? fmt::format("({}*kt)", rot) : "kn");
-      });
-    }
-  return best;
+  const double rot = SaltDEM::rotation_factor(domain->dimension);
+  const auto &p = params[i][j];
+  const bool tang = rot * p.kt > p.kn;
+  const double k = tang ? rot * p.kt : p.kn;
+  consider_limit(dtfactor * sqrt(m / k), best, why, [&] {
+    return fmt::format("{} = {:.6g} of types {} {} with the lightest mass {:.6g} "
+                       "(dt < {} * sqrt(m/{}))",
+                       tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, dtfactor,
+                       tang ? fmt::format("({}*kt)", rot) : "kn");
+  });
 }
 
 /* ---------------------------------------------------------------------- */

@@ -53,8 +53,9 @@ class PairSaltdemCohesive : public PairSaltdem {
   void *pair_params(int i, int j) override { return &params[i][j]; }
   size_t params_size() const override { return sizeof(SaltDEM::CohesiveParams); }
   void mix(int, int) override;
+  void derive(int, int) override;
   double range(int i, int j) const override { return params[i][j].tens > 0.0 ? params[i][j].range : 0.0; }
-  double stable_dt(const double *, std::string &) override;
+  void pair_limit(int, int, double, double, double &, std::string &) override;
 };
 
 }    // namespace LAMMPS_NS

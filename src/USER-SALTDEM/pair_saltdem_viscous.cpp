@@ -33,7 +33,7 @@ PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), index_rho(-1), fluidself(nullptr), isfluid(nullptr), nmax(0),
     any_fluid(false),
     calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.5),
-    calibration_checked(DEFAULT_CALIBRATION)
+    calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
   comm_forward = 2;
   comm_reverse = 1;
@@ -73,28 +73,28 @@ void PairSaltdemViscous::settings(int narg, char **arg)
   int iarg = 0;
   while (iarg < narg) {
     if (iarg + 2 > narg)
-      utils::missing_cmd_args(FLERR, fmt::format("pair_style saltdem/viscous {}", arg[iarg]), error);
+      utils::missing_cmd_args(FLERR, fmt::format("pair_style {} {}", name, arg[iarg]), error);
     const double v = SaltDEM::numeric(FLERR, arg[iarg + 1],
-                                      fmt::format("Pair style saltdem/viscous: {}", arg[iarg]), lmp);
+                                      fmt::format("Pair style {}: {}", name, arg[iarg]), lmp);
     if (strcmp(arg[iarg], "correction") == 0) {
-      if (v <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: correction {} must be > 0", v);
+      if (v <= 0.0) error->all(FLERR, "Pair style {}: correction {} must be > 0", name, v);
       correction = v;
     } else if (strcmp(arg[iarg], "calibration") == 0) {
-      if (v <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: calibration {} must be > 0", v);
+      if (v <= 0.0) error->all(FLERR, "Pair style {}: calibration {} must be > 0", name, v);
       calibration = v;
     } else if (strcmp(arg[iarg], "dtfactor") == 0) {
       if (v <= 0.0 || v > 0.8)
-        error->all(FLERR, "Pair style saltdem/viscous: dtfactor {} must be in (0, 0.8]", v);
+        error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, 0.8]", name, v);
       dtfactor = v;
     } else if (strcmp(arg[iarg], "viscfactor") == 0) {
       if (v <= 0.0 || v > 1.0)
-        error->all(FLERR, "Pair style saltdem/viscous: viscfactor {} must be in (0, 1]", v);
+        error->all(FLERR, "Pair style {}: viscfactor {} must be in (0, 1]", name, v);
       viscfactor = v;
     } else
       error->all(FLERR,
-                 "Pair style saltdem/viscous: unknown keyword '{}' (expected: correction, calibration, "
+                 "Pair style {}: unknown keyword '{}' (expected: correction, calibration, "
                  "dtfactor, viscfactor)",
-                 arg[iarg]);
+                 name, arg[iarg]);
     iarg += 2;
   }
 }
@@ -111,61 +111,55 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
 
   SaltDEM::ViscousParams p{};
   auto value = [&](const char *str, const char *what) {
-    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style saltdem/viscous: {}", what), lmp);
+    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style {}: {}", name, what), lmp);
   };
   p.eta = value(arg[2], "eta");
   p.kn = value(arg[3], "kn");
-  if (p.eta <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: eta = {} must be > 0", p.eta);
-  if (p.kn < 0.0) error->all(FLERR, "Pair style saltdem/viscous: kn = {} must be >= 0", p.kn);
+  if (p.eta <= 0.0) error->all(FLERR, "Pair style {}: eta = {} must be > 0", name, p.eta);
+  if (p.kn < 0.0) error->all(FLERR, "Pair style {}: kn = {} must be >= 0", name, p.kn);
   p.ratio = 1.0;
 
   std::string kw = arg[4];
-  std::string opt;
   if (kw == "fluid") {
     p.mode = SaltDEM::VISCOUS_FLUID;
     p.h = value(arg[5], "fluid h");
-    if (p.h <= 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid h = {} must be > 0", p.h);
+    if (p.h <= 0.0) error->all(FLERR, "Pair style {}: fluid h = {} must be > 0", name, p.h);
     if (narg != 7)
-      error->all(FLERR, "Pair style saltdem/viscous: 'fluid' takes h and K, got {} values; usage: {}",
+      error->all(FLERR, "Pair style {}: 'fluid' takes h and K, got {} values; usage: {}", name,
                  narg - 5, usage);
     p.K = value(arg[6], "fluid K");
-    if (p.K < 0.0) error->all(FLERR, "Pair style saltdem/viscous: fluid K = {} must be >= 0", p.K);
+    if (p.K < 0.0) error->all(FLERR, "Pair style {}: fluid K = {} must be >= 0", name, p.K);
   } else if (kw == "contact") {
     p.mode = SaltDEM::VISCOUS_CONTACT;
     if (p.kn <= 0.0)
-      error->all(FLERR, "Pair style saltdem/viscous: contact kn = {} must be > 0 (a boundary needs "
-                 "its elastic repulsion)", p.kn);
+      error->all(FLERR, "Pair style {}: contact kn = {} must be > 0 (a boundary needs its elastic "
+                 "repulsion)", name, p.kn);
     p.gap = value(arg[5], "contact gap");
-    if (p.gap < 0.0) error->all(FLERR, "Pair style saltdem/viscous: contact gap = {} must be >= 0", p.gap);
+    if (p.gap < 0.0) error->all(FLERR, "Pair style {}: contact gap = {} must be >= 0", name, p.gap);
     if (narg == 8 && strcmp(arg[6], "tangential") == 0) {
       p.ratio = value(arg[7], "tangential ratio");
       if (p.ratio < 0.0)
-        error->all(FLERR, "Pair style saltdem/viscous: tangential ratio = {} must be >= 0", p.ratio);
+        error->all(FLERR, "Pair style {}: tangential ratio = {} must be >= 0", name, p.ratio);
     } else if (narg != 6)
-      error->all(FLERR, "Pair style saltdem/viscous: unexpected arguments after 'contact {}' "
-                 "(allowed: tangential R); usage: {}", arg[5], usage);
+      error->all(FLERR, "Pair style {}: unexpected arguments after 'contact {}' (allowed: "
+                 "tangential R); usage: {}", name, arg[5], usage);
   } else
-    error->all(FLERR, "Pair style saltdem/viscous: unknown law '{}' (expected fluid or contact); usage: {}",
-               kw, usage);
+    error->all(FLERR, "Pair style {}: unknown law '{}' (expected fluid or contact); usage: {}",
+               name, kw, usage);
 
-  int count = 0;
-  for (int i = ilo; i <= ihi; i++)
-    for (int j = MAX(jlo, i); j <= jhi; j++) {
-      params[i][j] = p;
-      eta[i][j] = p.eta;
-      setflag[i][j] = 1;
-      count++;
-      // under pair hybrid, whose restart files hold no coefficients, the pair_coeff given
-      // again after read_restart keeps the reference density of the file (same kernel h)
-      if (i == j && p.mode == SaltDEM::VISCOUS_FLUID && i < (int) rho0_restart.size() &&
-          rho0_restart[i] > 0.0 && fabs(h_restart[i] - p.h) <= 1e-12 * p.h) {
-        params[i][i].rho0 = rho0_restart[i];
-        if (comm->me == 0)
-          utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.15g} "
-                         "(from the restart file)\n", i, rho0_restart[i]);
-      }
+  assign_coeffs(ilo, ihi, jlo, jhi, [&](int i, int j) {
+    params[i][j] = p;
+    eta[i][j] = p.eta;
+    // under pair hybrid, whose restart files hold no coefficients, the pair_coeff given
+    // again after read_restart keeps the reference density of the file (same kernel h)
+    if (i == j && p.mode == SaltDEM::VISCOUS_FLUID && i < (int) rho0_restart.size() &&
+        rho0_restart[i] > 0.0 && fabs(h_restart[i] - p.h) <= 1e-12 * p.h) {
+      params[i][i].rho0 = rho0_restart[i];
+      if (comm->me == 0)
+        utils::logmesg(lmp, "pair {}: reference density of fluid type {} = {:.15g} (from the "
+                       "restart file)\n", name, i, rho0_restart[i]);
     }
-  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients" + utils::errorurl(21));
+  });
 }
 
 /* cross types of the same law: springs and dashpots in series, lengths
@@ -173,19 +167,18 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
 
 void PairSaltdemViscous::mix(int i, int j)
 {
-  auto series = [](double x, double y) { return (x + y > 0.0) ? 2.0 * x * y / (x + y) : 0.0; };
   const auto &a = params[i][i];
   const auto &b = params[j][j];
   if (a.mode != b.mode)
     error->all(FLERR,
-               "Pair style saltdem/viscous: types {} ({}) and {} ({}) use different laws and cannot "
-               "be mixed; add 'pair_coeff {} {} ...' (contact for a boundary)",
-               i, a.mode == SaltDEM::VISCOUS_FLUID ? "fluid" : "contact", j,
+               "Pair style {}: types {} ({}) and {} ({}) use different laws and cannot be mixed; "
+               "add 'pair_coeff {} {} ...' (contact for a boundary)",
+               name, i, a.mode == SaltDEM::VISCOUS_FLUID ? "fluid" : "contact", j,
                b.mode == SaltDEM::VISCOUS_FLUID ? "fluid" : "contact", i, j);
   auto &p = params[i][j];
   p = a;
-  p.eta = series(eta[i][i], eta[j][j]);
-  p.kn = series(a.kn, b.kn);
+  p.eta = mix_series(eta[i][i], eta[j][j]);
+  p.kn = mix_series(a.kn, b.kn);
   p.h = 0.5 * (a.h + b.h);
   p.K = sqrt(a.K * b.K);
   p.rho0 = 0.0;
@@ -215,7 +208,7 @@ void PairSaltdemViscous::init_style()
     int flag, cols;
     index_rho = atom->find_custom("saltdem_rho", flag, cols);
     if (index_rho < 0 || flag != 1 || cols != 0)
-      error->all(FLERR, "Pair style saltdem/viscous: per-atom property d_saltdem_rho is missing");
+      error->all(FLERR, "Pair style {}: per-atom property d_saltdem_rho is missing", name);
   }
   PairSaltdem::init_style();
 }
@@ -309,18 +302,18 @@ void PairSaltdemViscous::pre_loop()
       if (fluidself[t] && params[t][t].rho0 <= 0.0 && all[4 * t + 1] > 0.0) {
         params[t][t].rho0 = all[4 * t] / all[4 * t + 1];
         if (comm->me == 0)
-          utils::logmesg(lmp, "pair saltdem/viscous: reference density of fluid type {} = {:.15g}\n",
+          utils::logmesg(lmp, "pair {}: reference density of fluid type {} = {:.15g}\n", name,
                          t, params[t][t].rho0);
         if (all[4 * t + 3] > 0.0 && comm->me == 0) {
           const double carried = all[4 * t + 2] / all[4 * t + 3];
           error->warning(FLERR,
-                         "Pair style saltdem/viscous: the reference density of fluid type {} was "
+                         "Pair style {}: the reference density of fluid type {} was "
                          "measured again ({:.6g}) while its atoms carry densities from an earlier "
                          "run or a restart file: their pressure is reset (mean now {:.3g}), and a "
                          "fluid under load loses the pressure that carried it. After read_restart "
                          "give only the pair_coeff commands, not pair_style, to keep the "
                          "reference density of the file",
-                         t, params[t][t].rho0,
+                         name, t, params[t][t].rho0,
                          params[t][t].K * (carried / params[t][t].rho0 - 1.0));
         }
       }
@@ -427,23 +420,22 @@ double PairSaltdemViscous::memory_usage()
   return PairSaltdem::memory_usage() + 3.0 * nmax * sizeof(double);
 }
 
-/* the viscosity may have been changed through extract("eta") since the
-   last run (fix adapt, fix saltdem/viscosity): derive the dashpots here */
+/* the dashpots from the viscosity, which may have been changed through extract("eta") since
+   the last run (fix adapt, fix saltdem/viscosity) */
 
-double PairSaltdemViscous::init_one(int i, int j)
+void PairSaltdemViscous::derive(int i, int j)
 {
   if (setflag[i][j]) {
     // a viscosity set through extract("eta") (fix adapt, fix saltdem/viscosity) passes the
     // bounds of pair_coeff too
     if (!(eta[i][j] > 0.0) || !SaltDEM::in_bounds(eta[i][j]))
       error->all(FLERR,
-                 "Pair style saltdem/viscous: eta = {} of types {} {}, set through extract(\"eta\") "
-                 "(fix adapt or fix saltdem/viscosity), must be > 0, finite and of a magnitude in "
-                 "[{:g}, {:g}]; check the variable or the viscosity that sets it",
-                 eta[i][j], i, j, SaltDEM::MIN_VALUE, SaltDEM::MAX_VALUE);
+                 "Pair style {}: eta = {} of types {} {}, set through extract(\"eta\") (fix adapt "
+                 "or fix saltdem/viscosity), must be > 0, finite and of a magnitude in [{:g}, "
+                 "{:g}]; check the variable or the viscosity that sets it",
+                 name, eta[i][j], i, j, SaltDEM::MIN_VALUE, SaltDEM::MAX_VALUE);
     params[i][j].eta = eta[i][j];
   }
-  const double cut = PairSaltdem::init_one(i, j);
   auto &p = params[i][j];
   p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
   p.ih2 = (p.h > 0.0) ? 0.5 / p.h : 0.0;
@@ -453,16 +445,21 @@ double PairSaltdemViscous::init_one(int i, int j)
   if (!std::isfinite(p.cw) || !std::isfinite(p.kfac) || !std::isfinite(p.gn) ||
       !std::isfinite(p.gt) || !std::isfinite(p.ih2))
     error->all(FLERR,
-               "Pair style saltdem/viscous: the dashpot coefficients of types {} {} are not finite "
-               "(2 correction eta W'(h) = {}, calibration eta = {}, tangential ratio x that = {}) "
+               "Pair style {}: the dashpot coefficients of types {} {} are not finite (2 "
+               "correction eta W'(h) = {}, calibration eta = {}, tangential ratio x that = {}) "
                "from eta = {}, h = {}, correction = {}, calibration = {}, tangential ratio = {}; "
                "use values of physical size",
-               i, j, p.kfac, p.gn, p.gt, p.eta, p.h, correction, calibration, p.ratio);
-  params[j][i] = p;
+               name, i, j, p.kfac, p.gn, p.gt, p.eta, p.h, correction, calibration, p.ratio);
   eta[j][i] = eta[i][j] = p.eta;
+}
 
-  // a change of the viscosity or calibration since the last time step check (during a run:
-  // fix adapt calls reinit(), hence init_one()): the next force computation checks again
+/* a change of the viscosity or calibration since the last time step check (during a run: fix
+   adapt calls reinit(), hence init_one()): the next force computation checks again */
+
+double PairSaltdemViscous::init_one(int i, int j)
+{
+  const double cut = PairSaltdem::init_one(i, j);
+  const auto &p = params[i][j];
   if (setflag[i][j] && i < (int) eta_checked.size() && j < (int) eta_checked[i].size() &&
       (eta_checked[i][j] != p.eta || calibration_checked != calibration)) {
     recheck = true;
@@ -490,76 +487,49 @@ void PairSaltdemViscous::limits_checked()
    explicit dashpot network is stable while dt < m / sum(gamma) for every
    particle (Gershgorin).  FLUID: the kernel sums to sum(gamma) = 7 eta V / h^2
    (2D and 3D), so dt < S m h^2 / (7 eta V).
-   CONTACT: a disc's tangential dashpot also spins it (1/m + l^2/I = 3/m, 3.5/m
-   for a sphere), so dt < m / (g (1 + rot ratio)).  Both times viscfactor. */
+   CONTACT: a disc's tangential dashpot also spins it (SaltDEM::rotation_factor),
+   so dt < m / (g (1 + rot ratio)).  Both times viscfactor. */
 
-double PairSaltdemViscous::stable_dt(const double *mmin, std::string &why)
+void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &best,
+                                    std::string &why)
 {
-  const int n = atom->ntypes;
-  const bool disc = (domain->dimension == 2);    // (also before init_style: saltdem/timestep)
-  // smallest inertial mass per unit disc volume per type (kept for a re-check during the run)
-  if (!masses_cached || (int) mv_cache.size() != n + 1) {
-    std::vector<double> local(n + 1, DBL_MAX);
-    mv_cache.assign(n + 1, DBL_MAX);
-    for (int i = 0; i < atom->nlocal; i++) {
-      const double s = inertia_scale(i);
-      const double r = atom->radius[i];
-      const double vol = disc ? M_PI * r * r : 4.0 * M_PI / 3.0 * r * r * r;
-      if (s > 0.0 && vol > 0.0) local[atom->type[i]] = MIN(local[atom->type[i]], s * atom->rmass[i] / vol);
-    }
-    MPI_Allreduce(&local[1], &mv_cache[1], n, MPI_DOUBLE, MPI_MIN, world);
-  }
-  const std::vector<double> &mv = mv_cache;
-
-  const double rot = disc ? 3.0 : 3.5;
-  double best = 0.0;
-  for (int i = 1; i <= n; i++)
-    for (int j = i; j <= n; j++) {
-      if (!setflag[i][j]) {
-        if (!setflag[i][i] || !setflag[j][j]) continue;    // another hybrid sub-style's pair
-        mix(i, j);                                          // init_one() has not run yet
-      }
-      if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;               // a type without atoms
-      if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
-      const double m = MIN(mmin[i], mmin[j]);
-      const double e = eta[i][j];
-      const auto &p = params[i][j];
-      if (p.kn > 0.0)
-        consider_limit(dtfactor * sqrt(m / p.kn), best, why, [&] {
-          return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
-                             "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor);
-        });
-      double lim;
-      std::string formula;
-      if (p.mode == SaltDEM::VISCOUS_FLUID) {
-        // V = 1/sum W is not known before the first step: bound it by the
-        // disc volume over a packing fraction of 0.7
-        lim = viscfactor * MIN(mv[i], mv[j]) * 0.7 * p.h * p.h / (7.0 * correction * e);
-        formula = fmt::format("dt < {} * S m h^2 / (7 correction eta V), V = disc/0.7, h = {:.6g}, "
-                              "correction = {:.6g}", viscfactor, p.h, correction);
-        // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
-        if (p.K > 0.0) {
-          const double c = sqrt(p.K / (0.7 * MIN(mv[i], mv[j])));
-          consider_limit(0.25 * p.h / c, best, why, [&] {
-            return fmt::format("K = {:.6g} of types {} {} (sound speed {:.4g} with the inertial "
-                               "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
-                               "K or more inertia", p.K, i, j, c, p.h);
-          });
-        }
-      } else {
-        lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio));
-        formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio)), "
-                              "calibration = {:.6g}, ratio = {:.6g}, lightest mass {:.6g}",
-                              viscfactor, rot, calibration, p.ratio, m);
-      }
-      consider_limit(lim, best, why, [&] {
-        return fmt::format("eta = {:.6g} of types {} {} ({}); a larger dt needs a smaller eta "
-                           "or more inertia for the viscous discs ('fix saltdem/nve ... inertia "
-                           "S' with S >= {:.3g} times the present one)",
-                           e, i, j, formula, update->dt / lim);
+  const double rot = SaltDEM::rotation_factor(domain->dimension);
+  const double e = eta[i][j];
+  const auto &p = params[i][j];
+  if (p.kn > 0.0)
+    consider_limit(dtfactor * sqrt(m / p.kn), best, why, [&] {
+      return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
+                         "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor);
+    });
+  double lim;
+  std::string formula;
+  if (p.mode == SaltDEM::VISCOUS_FLUID) {
+    // V = 1/sum W is not known before the first step: bound it by the
+    // disc volume over a packing fraction of 0.7
+    lim = viscfactor * mv * 0.7 * p.h * p.h / (7.0 * correction * e);
+    formula = fmt::format("dt < {} * S m h^2 / (7 correction eta V), V = disc/0.7, h = {:.6g}, "
+                          "correction = {:.6g}", viscfactor, p.h, correction);
+    // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
+    if (p.K > 0.0) {
+      const double c = sqrt(p.K / (0.7 * mv));
+      consider_limit(0.25 * p.h / c, best, why, [&] {
+        return fmt::format("K = {:.6g} of types {} {} (sound speed {:.4g} with the inertial "
+                           "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
+                           "K or more inertia", p.K, i, j, c, p.h);
       });
     }
-  return best;
+  } else {
+    lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio));
+    formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio)), "
+                          "calibration = {:.6g}, ratio = {:.6g}, lightest mass {:.6g}",
+                          viscfactor, rot, calibration, p.ratio, m);
+  }
+  consider_limit(lim, best, why, [&] {
+    return fmt::format("eta = {:.6g} of types {} {} ({}); a larger dt needs a smaller eta "
+                       "or more inertia for the viscous discs ('fix saltdem/nve ... inertia "
+                       "S' with S >= {:.3g} times the present one)",
+                       e, i, j, formula, update->dt / lim);
+  });
 }
 
 /* ---------------------------------------------------------------------- */
@@ -620,8 +590,22 @@ void PairSaltdemViscous::read_restart_settings(FILE *fp)
   }
 }
 
+/* the inertia factor S of the viscous discs: the largest of the integrated atoms of the types
+   whose own pair I,I is this style's (the salt), 1 if none is integrated.  Collective. */
+
+double PairSaltdemViscous::find_salt_inertia()
+{
+  double s = 0.0, all = 0.0;
+  if (allocated)
+    for (int i = 0; i < atom->nlocal; i++)
+      if (setflag[atom->type[i]][atom->type[i]]) s = MAX(s, inertia_scale(i));
+  MPI_Allreduce(&s, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  return (all > 0.0) ? all : 1.0;
+}
+
 /* "eta": per type pair viscosity (dim 2), read and changed by fix adapt and
-   fix saltdem/viscosity; "calibration": dashpot per unit viscosity */
+   fix saltdem/viscosity; "calibration": dashpot per unit viscosity; "inertia": the inertia
+   factor of the salt's discs (find_salt_inertia(), collective: every rank must ask) */
 
 void *PairSaltdemViscous::extract(const char *str, int &dim)
 {
@@ -631,5 +615,9 @@ void *PairSaltdemViscous::extract(const char *str, int &dim)
   }
   dim = 0;
   if (strcmp(str, "calibration") == 0) return (void *) &calibration;
+  if (strcmp(str, "inertia") == 0) {
+    salt_inertia = find_salt_inertia();
+    return (void *) &salt_inertia;
+  }
   return nullptr;
 }

@@ -110,6 +110,7 @@ class PairSaltdemViscous : public PairSaltdem {
   void *pair_params(int i, int j) override { return &params[i][j]; }
   size_t params_size() const override { return sizeof(SaltDEM::ViscousParams); }
   void mix(int, int) override;
+  void derive(int, int) override;
   double range(int i, int j) const override
   {
     return params[i][j].mode == SaltDEM::VISCOUS_CONTACT ? params[i][j].gap : 0.0;
@@ -119,13 +120,14 @@ class PairSaltdemViscous : public PairSaltdem {
     return params[i][j].mode == SaltDEM::VISCOUS_FLUID ? 2.0 * params[i][j].h : 0.0;
   }
   void init_style() override;
-  double stable_dt(const double *, std::string &) override;
+  void pair_limit(int, int, double, double, double &, std::string &) override;
+  double find_salt_inertia();
   // the time step check: the viscosities and calibration it saw (a change during the run,
   // e.g. by fix adapt, is checked again), and the inertial masses per disc volume it used
   void limits_checked() override;
   std::vector<std::vector<double>> eta_checked;
   double calibration_checked;
-  std::vector<double> mv_cache;
+  double salt_inertia;    // extract("inertia"): the inertia factor of the salt's discs
 };
 
 }    // namespace LAMMPS_NS

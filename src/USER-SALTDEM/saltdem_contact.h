@@ -92,6 +92,15 @@ inline void contact_kinematics(const double *xi, const double *xj, const double 
   if (want_reff) c.reff = radi * radj / (radi + radj);
 }
 
+/* A tangential force at the contact point both pushes a disc (sphere) and turns it: per unit
+   1/m its compliance is 1/m + l^2/I = 3/m for a disc (I = m r^2/2, l = r) and 3.5/m for a
+   sphere (I = 2 m r^2/5).  A tangential spring or dashpot therefore acts on the mass m over
+   this factor, which sets its stable time step. */
+inline double rotation_factor(int dimension)
+{
+  return (dimension == 2) ? 3.0 : 3.5;
+}
+
 /* Keep a 3D history vector in the tangent plane as the contact rotates, with
    its length unchanged (frame-indifferent spring). */
 inline void rotate_into_plane(double *h, const double *n)

@@ -34,9 +34,13 @@ void SaltdemTimestep::command(int narg, char **arg)
   // the smallest limit over every SaltDEM pair style present (alone or the sub-styles of a
   // hybrid): the same as the styles' own check at each run; a limit that is not a finite
   // positive number (zero or infinite: a coefficient or mass out of range) stops here
-  if (PairSaltdem::saltdem_styles(lmp).empty())
+  const auto styles = PairSaltdem::saltdem_styles(lmp);
+  if (styles.empty())
     error->all(FLERR, "saltdem/timestep needs a SaltDEM pair style (saltdem/cohesive, "
                "saltdem/viscous; alone or in pair_style hybrid) with its coefficients set");
+  // the coefficients of every type pair as the run's init_one() will make them (mixed,
+  // derived): the limit is computed from those
+  for (auto pair : styles) pair->init_coeffs();
   const auto lim = PairSaltdem::smallest_limit(lmp, "saltdem/timestep: ");
   if (!lim.pair)
     error->all(FLERR, "saltdem/timestep: no stable limit applies (no integrated particles "

@@ -17,20 +17,31 @@
 #include "error.h"
 #include "group.h"
 #include "modify.h"
+#include "update.h"
 
 #include <cmath>
+#include <cstring>
+
+static constexpr double DEFAULT_G = 9.81;    // m/s^2 (units si only)
 
 using namespace LAMMPS_NS;
 
 FixSaltdemTiltwall::FixSaltdemTiltwall(LAMMPS *lmp, int narg, char **arg) :
-    FixSaltdemMotion(lmp, narg, arg), tilt(0.0), g(9.81), igravity(-1)
+    FixSaltdemMotion(lmp, narg, arg), tilt(0.0), g(0.0), g_given(0), igravity(-1)
 {
   has_toward = 1;
   usage = fmt::format("fix ID group {} tilt A rate V target T [toward right|left] "
           "[gravity GROUP] [g G] [at_target stop|end]", style);
   parse(narg, arg);
   if (tilt == 0.0) error->all(FLERR, "Fix {}: tilt is required; usage: {}", style, usage);
-  if (g <= 0.0) error->all(FLERR, "Fix {}: g = {} must be > 0 (m/s^2)", style, g);
+  // the default g is the Earth's in m/s^2: SI only
+  if (!g_given) {
+    if (strcmp(update->unit_style, "si") != 0)
+      error->all(FLERR, "Fix {}: the default g = {} is in m/s^2 (units si); under units {} give "
+                 "'g G' in the deck's units (length/time^2)", style, DEFAULT_G, update->unit_style);
+    g = DEFAULT_G;
+  }
+  if (g <= 0.0) error->all(FLERR, "Fix {}: g = {} must be > 0", style, g);
   if (igravity == igroup)
     error->all(FLERR, "Fix {}: the gravity group must be the discs that move freely, not the "
                "wall group {}", style, group->names[igroup]);
@@ -50,8 +61,10 @@ int FixSaltdemTiltwall::parse_keyword(const std::string &kw, const std::string &
     tilt = angle_arg(kw, val);
   else if (kw == "gravity")
     igravity = group_arg(kw, val);
-  else if (kw == "g")
+  else if (kw == "g") {
     g = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: g", style), lmp);
+    g_given = 1;
+  }
   else
     return 0;
   return 1;

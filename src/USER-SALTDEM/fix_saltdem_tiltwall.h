@@ -25,7 +25,8 @@ class FixSaltdemTiltwall : public FixSaltdemMotion {
  protected:
   double tilt;                // tilt of the model (degrees); sense +1: it dips toward +x and
                               // the right wall moves out
-  double g;                   // gravitational acceleration (m/s^2)
+  double g;                   // gravitational acceleration (length/time^2; default 9.81 m/s^2 in SI)
+  int g_given;                // the keyword g was given
   int igravity;               // group that feels gravity, -1: none (the deck applies it)
   std::string gravity_id;     // internal fix gravity
   int parse_keyword(const std::string &, const std::string &) override;

@@ -28,13 +28,21 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-static constexpr double YEAR = 365.25 * 24.0 * 3600.0;
-
 FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), lambda(0.0), eta_model(0.0), eta_natural(0.0), rate(0.0), length(0.0),
     density(0.0), inertia(1.0), inertia_given(0.0), warn_re(0.1), t0(0.0), npairs(0),
-    reported(0.0)
+    reported(0.0), ftm2v(1.0), second(1.0), metre(1.0)
 {
+  // natural time in years and rates in m/ka need the deck's time and length in SI: from
+  // LAMMPS's unit system (1 fs and 1 Angstrom in the deck's units); lj has none
+  if (strcmp(update->unit_style, "lj") == 0)
+    error->all(FLERR, "Fix {}: units lj have no physical time or length, so natural time in "
+               "years and rates in m/ka cannot be reported; use units si (or another physical "
+               "unit system)", style);
+  ftm2v = force->ftm2v;
+  second = 1.0e-15 / force->femtosecond;
+  metre = 1.0e-10 / force->angstrom;
+
   const std::string usage = fmt::format("fix ID group {} lambda L (natural eta | model eta) rate "
                                         "V length L density rho [inertia S] [warn Re]", style);
   if (narg < 5) utils::missing_cmd_args(FLERR, fmt::format("fix {}", style), error);
@@ -79,7 +87,7 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   // the derived viscosities go to the pair style (its bounds) and the reported numbers must be
   // finite
   if (!SaltDEM::in_bounds(eta_model) || !SaltDEM::in_bounds(eta_natural))
-    error->all(FLERR, "Fix {}: lambda = {} gives a model viscosity {} and a natural one {} Pa s "
+    error->all(FLERR, "Fix {}: lambda = {} gives a model viscosity {} and a natural one {} "
                "beyond the bounds of SaltDEM coefficients [{:g}, {:g}]; check lambda and the "
                "viscosity given", style, lambda, eta_model, eta_natural, SaltDEM::MIN_VALUE,
                SaltDEM::MAX_VALUE);
@@ -118,8 +126,9 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
 
   if (comm->me == 0)
-    utils::logmesg(lmp, "fix {}: lambda {:.4g}: viscosity model {:.4g} Pa s, natural {:.4g} Pa s "
-                   "(set on {} type pairs)\n", style, lambda, eta_model, eta_natural, npairs);
+    utils::logmesg(lmp, "fix {}: lambda {:.4g}: viscosity model {:.4g}, natural {:.4g} ({}) (set "
+                   "on {} type pairs)\n", style, lambda, eta_model, eta_natural,
+                   unit_label("Pa s"), npairs);
 }
 
 /* every saltdem/viscous style: the pair style or the sub-styles of pair hybrid (pair_match
@@ -154,12 +163,12 @@ double FixSaltdemViscosity::salt_inertia(const std::vector<Pair *> &salts)
 
 void FixSaltdemViscosity::check_finite()
 {
-  for (double q : {reynolds_model(), density * (rate / lambda) * length / eta_natural,
-                   rate / length, rate / (lambda * length), lambda / YEAR})
+  for (double q : {reynolds_model(), reynolds_natural(), natural_rate(), strain_rate_model(),
+                   strain_rate_natural(), lambda * second / YEAR})
     if (!std::isfinite(q) || q == 0.0)
       error->all(FLERR, "Fix {}: the Reynolds numbers, strain rates and time scale from lambda "
                  "= {}, rate = {}, length = {}, density = {}, inertia = {} and the viscosity {} "
-                 "Pa s overflow or vanish ({}); use values of physical size",
+                 "overflow or vanish ({}); use values of physical size",
                  style, lambda, rate, length, density, inertia, eta_model, q);
 }
 
@@ -188,16 +197,16 @@ void FixSaltdemViscosity::init()
 
   if (comm->me == 0 && reported != inertia)
     utils::logmesg(lmp,
-                   "fix {}: lambda {:.4g}: viscosity model {:.4g} Pa s, natural {:.4g} Pa s\n"
-                   "  driving rate model {:.4g} m/s, natural {:.4g} m/s = {:.4g} m/ka; length "
-                   "{:.4g} m, density {:.4g} kg/m^3, inertia x{:.4g} (salt's integrator)\n"
+                   "fix {}: lambda {:.4g}: viscosity model {:.4g}, natural {:.4g} ({})\n"
+                   "  driving rate model {:.4g}, natural {:.4g} ({}) = {:.4g} m/ka; length "
+                   "{:.4g} ({}), density {:.4g} ({}), inertia x{:.4g} (salt's integrator)\n"
                    "  Reynolds number model {:.3g}, natural {:.3g}; strain rate model {:.3g} 1/s, "
                    "natural {:.3g} 1/s\n"
                    "  1 s of model time is {:.4g} years of natural time\n",
-                   style, lambda, eta_model, eta_natural, rate, rate / lambda,
-                   rate / lambda * YEAR * 1000.0, length, density, inertia, reynolds_model(),
-                   density * (rate / lambda) * length / eta_natural, rate / length,
-                   rate / (lambda * length), lambda / YEAR);
+                   style, lambda, eta_model, eta_natural, unit_label("Pa s"), rate,
+                   rate / lambda, unit_label("m/s"), natural_rate(), length, unit_label("m"),
+                   density, unit_label("kg/m^3"), inertia, reynolds_model(), reynolds_natural(),
+                   strain_rate_model(), strain_rate_natural(), lambda / YEAR);
   reported = inertia;
 
   const double re = reynolds_model();
@@ -207,6 +216,13 @@ void FixSaltdemViscosity::init()
                    "inertia is no longer negligible, the flow is not the scaled natural flow. "
                    "Lower the rate, the inertia factor or lambda",
                    style, re, warn_re);
+}
+
+/* the unit of an input in SI, or the note that it is in the deck's units */
+
+std::string FixSaltdemViscosity::unit_label(const char *si) const
+{
+  return (strcmp(update->unit_style, "si") == 0) ? si : fmt::format("units {}", update->unit_style);
 }
 
 double FixSaltdemViscosity::model_time() const
@@ -222,12 +238,12 @@ double FixSaltdemViscosity::compute_vector(int n)
 {
   switch (n) {
     case 0: return reynolds_model();
-    case 1: return density * (rate / lambda) * length / eta_natural;
-    case 2: return model_time() - t0;
-    case 3: return lambda * (model_time() - t0) / YEAR;
-    case 4: return rate / lambda * YEAR * 1000.0;
-    case 5: return rate / length;
-    case 6: return rate / (lambda * length);
+    case 1: return reynolds_natural();
+    case 2: return (model_time() - t0) * second;
+    case 3: return lambda * ((model_time() - t0) * second) / YEAR;
+    case 4: return natural_rate();
+    case 5: return strain_rate_model();
+    case 6: return strain_rate_natural();
   }
   return 0.0;
 }

@@ -27,9 +27,9 @@ class FixSaltdemViscosity : public Fix {
  protected:
   double lambda;        // viscosity scaling factor: eta_model = eta_natural / lambda
   double eta_model, eta_natural;
-  double rate;          // driving velocity of the model (m/s)
+  double rate;          // driving velocity of the model (length/time)
   double length;        // length scale of the flow (m)
-  double density;       // density of the viscous material (kg/m^3)
+  double density;       // density of the viscous material (mass/volume)
   double inertia;       // inertia factor S of the salt's discs (fix saltdem/nve, through the pair)
   double inertia_given; // the keyword 'inertia' (0: not given), which must agree with S
   double warn_re;       // warn when the model Reynolds number exceeds this
@@ -41,7 +41,20 @@ class FixSaltdemViscosity : public Fix {
   double salt_inertia(const std::vector<class Pair *> &);
   void check_finite();
   double model_time() const;
-  double reynolds_model() const { return density * inertia * rate * length / eta_model; }
+  std::string unit_label(const char *si) const;
+  // the deck's units: force x time / mass to velocity, seconds per time unit, metres per
+  // length unit (1, 1, 1 in SI)
+  double ftm2v, second, metre;
+  // what the fix reports, in SI: Reynolds numbers, natural rate (m/ka), strain rates (1/s)
+  double reynolds_model() const { return density * inertia * rate * length / (eta_model * ftm2v); }
+  double reynolds_natural() const
+  {
+    return density * (rate / lambda) * length / (eta_natural * ftm2v);
+  }
+  double natural_rate() const { return rate / lambda * metre / second * YEAR * 1000.0; }
+  double strain_rate_model() const { return rate / length / second; }
+  double strain_rate_natural() const { return rate / (lambda * length) / second; }
+  static constexpr double YEAR = 365.25 * 24.0 * 3600.0;    // s
 };
 
 }    // namespace LAMMPS_NS

@@ -13,6 +13,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "memory.h"
 
 #include <cfloat>
@@ -126,7 +127,7 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
                name, p.range, p.tens / p.kn);
 
   // the damping coefficients must be finite (init_one derives them again)
-  SaltDEM::cohesive_derive(p);
+  SaltDEM::cohesive_derive(p, force->ftm2v);
   if (!std::isfinite(p.cn) || !std::isfinite(p.ct))
     error->all(FLERR, "Pair style {}: the damping coefficients 2 zeta sqrt(k) = {} {} from kn = "
                "{}, kt = {} and damp {} {} are not finite", name, p.cn, p.ct, p.kn, p.kt,
@@ -159,7 +160,7 @@ void PairSaltdemCohesive::mix(int i, int j)
 
 void PairSaltdemCohesive::derive(int i, int j)
 {
-  SaltDEM::cohesive_derive(params[i][j]);
+  SaltDEM::cohesive_derive(params[i][j], force->ftm2v);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -190,7 +191,8 @@ void PairSaltdemCohesive::init_style()
 }
 
 /* The stiffest oscillator of the pair: the normal spring, or the tangential spring that also
-   turns the disc (SaltDEM::rotation_factor).  Stable dt = dtfactor * sqrt(m_min / k). */
+   turns the disc (SaltDEM::rotation_factor).  Stable dt = dtfactor * sqrt(m_min / k), with
+   k in mass / time^2 (times ftm2v: 1 in SI). */
 
 void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, double &best,
                                      std::string &why)
@@ -199,7 +201,7 @@ void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, double &bes
   const auto &p = params[i][j];
   const bool tang = rot * p.kt > p.kn;
   const double k = tang ? rot * p.kt : p.kn;
-  consider_limit(dtfactor * sqrt(m / k), best, why, [&] {
+  consider_limit(dtfactor * sqrt(m / (k * force->ftm2v)), best, why, [&] {
     return fmt::format("{} = {:.6g} of types {} {} with the lightest mass {:.6g} "
                        "(dt < {} * sqrt(m/{}))",
                        tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, dtfactor,

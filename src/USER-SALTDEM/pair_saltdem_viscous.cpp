@@ -15,6 +15,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "memory.h"
 #include "modify.h"
 #include "suffix.h"
@@ -494,10 +495,11 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
                                     std::string &why)
 {
   const double rot = SaltDEM::rotation_factor(domain->dimension);
+  const double f2v = force->ftm2v;    // (1 in SI) forces and dashpots act on m / ftm2v
   const double e = eta[i][j];
   const auto &p = params[i][j];
   if (p.kn > 0.0)
-    consider_limit(dtfactor * sqrt(m / p.kn), best, why, [&] {
+    consider_limit(dtfactor * sqrt(m / (p.kn * f2v)), best, why, [&] {
       return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
                          "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor);
     });
@@ -506,12 +508,12 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
   if (p.mode == SaltDEM::VISCOUS_FLUID) {
     // V = 1/sum W is not known before the first step: bound it by the
     // disc volume over a packing fraction of 0.7
-    lim = viscfactor * mv * 0.7 * p.h * p.h / (7.0 * correction * e);
+    lim = viscfactor * mv * 0.7 * p.h * p.h / (7.0 * correction * e * f2v);
     formula = fmt::format("dt < {} * S m h^2 / (7 correction eta V), V = disc/0.7, h = {:.6g}, "
                           "correction = {:.6g}", viscfactor, p.h, correction);
     // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
     if (p.K > 0.0) {
-      const double c = sqrt(p.K / (0.7 * mv));
+      const double c = sqrt(p.K * f2v / (0.7 * mv));
       consider_limit(0.25 * p.h / c, best, why, [&] {
         return fmt::format("K = {:.6g} of types {} {} (sound speed {:.4g} with the inertial "
                            "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
@@ -519,7 +521,7 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
       });
     }
   } else {
-    lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio));
+    lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio) * f2v);
     formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio)), "
                           "calibration = {:.6g}, ratio = {:.6g}, lightest mass {:.6g}",
                           viscfactor, rot, calibration, p.ratio, m);

@@ -161,11 +161,12 @@ struct CohesiveParams {
   double cn, ct;    // derived (cohesive_derive): damping per sqrt(reduced mass), 2 zeta sqrt(k)
 };
 
-/* the derived members of p, from the others */
-inline void cohesive_derive(CohesiveParams &p)
+/* the derived members of p, from the others.  ftm2v: the unit system's force x time / mass
+   to velocity (LAMMPS's force->ftm2v; 1 in SI): a critical dashpot is 2 sqrt(k m / ftm2v) */
+inline void cohesive_derive(CohesiveParams &p, double ftm2v)
 {
-  p.cn = 2.0 * p.zeta_n * std::sqrt(p.kn);
-  p.ct = 2.0 * p.zeta_t * std::sqrt(p.kt);
+  p.cn = 2.0 * p.zeta_n * std::sqrt(p.kn / ftm2v);
+  p.ct = 2.0 * p.zeta_t * std::sqrt(p.kt / ftm2v);
 }
 
 /* Elastic + cohesive normal force (positive = repulsive) at overlap delta.

@@ -18,12 +18,15 @@
 #include "domain.h"
 #include "error.h"
 #include "group.h"
+#include "update.h"
 
 #include <cmath>
+#include <cstring>
 
 using namespace LAMMPS_NS;
 
 static constexpr double MAXWALL = 1e7;    // most discs one command makes
+static constexpr double DEFAULT_DENSITY = 2200.0;    // kg/m^3 (units si only)
 
 static const char *usage = "saltdem/wall TYPE x0 y0 x1 y1 R [group NAME] [density RHO]";
 
@@ -47,7 +50,7 @@ void SaltdemWall::command(int narg, char **arg)
   if (r <= 0.0) error->all(FLERR, "saltdem/wall: radius R = {} must be > 0", r);
 
   int igroup = -1;
-  double density = 2200.0;
+  double density = 0.0;
   for (int iarg = 6; iarg < narg; iarg += 2) {
     if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, std::string("saltdem/wall ") + arg[iarg], error);
     const std::string kw = arg[iarg];
@@ -58,6 +61,14 @@ void SaltdemWall::command(int narg, char **arg)
       if (density <= 0.0) error->all(FLERR, "saltdem/wall: density = {} must be > 0", density);
     } else
       error->all(FLERR, "saltdem/wall: unknown keyword '{}'; usage: {}", kw, usage);
+  }
+  // the default density is the scenes' rock, in kg/m^3: SI only
+  if (density == 0.0) {
+    if (strcmp(update->unit_style, "si") != 0)
+      error->all(FLERR, "saltdem/wall: the default density {} is in kg/m^3 (units si); under "
+                 "units {} give 'density RHO' in the deck's units (mass per area of a disc of "
+                 "unit thickness)", DEFAULT_DENSITY, update->unit_style);
+    density = DEFAULT_DENSITY;
   }
 
   // both ends must lie in the box, which LAMMPS owns half-open, [lo, hi): a disc on an upper

@@ -196,7 +196,7 @@ def wendland(r, h):
 
 
 class Snapshot:
-    """A channel dump (id type x y vx vy radius mass fx fy d_saltdem_rho) and the SPH fields
+    """A channel dump (id type x y vx vy radius mass fx fy f_SALTDEM_DENSITY) and the SPH fields
     computed from it in numpy: kernel densities over all pairs within 2h
     except wall-wall (excluded from the neighbour list by the deck)."""
 
@@ -258,7 +258,7 @@ SNAP = f"include {PARAMS}\n" + CHANNEL.replace(
     "velocity salt set v_vxs v_vys 0\n"
     "run ${nrun}\n"
     "run 0\n"    # forces again with the dumped (full-step) velocities; run 0 does not advance rho
-    "write_dump all custom snap.dump id type x y vx vy radius mass fx fy d_saltdem_rho modify sort id "
+    "write_dump all custom snap.dump id type x y vx vy radius mass fx fy f_SALTDEM_DENSITY modify sort id "
     "format float %.17g\n")
 assert "snap.dump" in SNAP
 
@@ -501,7 +501,7 @@ neighbor 2.8 bin
 neigh_modify exclude type 3 3
 neigh_modify every 1 delay 0 check yes
 if "${recreate} > 0" then "pair_style saltdem/viscous" &
-  "pair_coeff * * 5e8 5e9 fluid 28 1e8" "pair_coeff 2 2 5e8 1e7 fluid 28 1e8"
+  "pair_coeff * * 5e8 5e9 fluid ${h} 1e8" "pair_coeff 2 2 5e8 0 fluid ${h} 1e8"
 fix integ salt saltdem/nve inertia 20
 fix drive top move linear 1 0 0 units box
 fix 2d all enforce2d
@@ -512,25 +512,32 @@ write_dump all custom final.dump id x y vx vy modify sort id format float %.17g
 
 def test_restart_continues_identically(pack, tmp_path):
     """run 400; write_restart; run 400  ==  read_restart; run 400 (one rank,
-    Couette, positions within 1e-10 of the box width).  eta, K, h and the
-    reference densities rho0 come from the restart file: rho0 is not measured
-    again.  Control: re-creating the pair style after read_restart measures
-    rho0 at the restart step and must change the result."""
+    Couette, positions within 1e-10 of the box width).  eta, K, h come from the
+    restart file, the densities and the reference densities rho0 from the
+    restart data of the density fix: rho0 is not measured again, also when the
+    pair style is given again after read_restart (the fix keeps the salt's
+    state).  Control: a kernel h changed after read_restart measures rho0 again,
+    with a warning, and changes the result."""
     ra = run_lmp(RESTART_A, tmp_path, pack=pack, V=1.0, nsteps=400)
     check_ok(ra)
     assert ra.out.count("reference density of fluid type 2") == 1
     a = read_dump(tmp_path / "final.dump")
-    rb = run_lmp(RESTART_B, tmp_path, recreate=0)
-    check_ok(rb)
-    assert "reference density" not in rb.out
-    b = read_dump(tmp_path / "final.dump")
-    assert len(a) == len(b) > 900
-    assert max_diff(a, b) / PACK["W"] < 1e-10
-    assert max_diff(a, b, cols=(2, 3)) < 1e-8
+    for recreate in (0, 1):
+        rb = run_lmp(RESTART_B, tmp_path, recreate=recreate, h=28)
+        check_ok(rb)
+        assert "reference density of fluid type 2 = " in rb.out
+        assert rb.out.count("reference density of fluid type") == rb.out.count("(from the restart file)")
+        assert "WARNING" not in rb.out
+        b = read_dump(tmp_path / "final.dump")
+        assert len(a) == len(b) > 900
+        assert max_diff(a, b) / PACK["W"] < 1e-10
+        assert max_diff(a, b, cols=(2, 3)) < 1e-8
 
-    rc = run_lmp(RESTART_B, tmp_path, recreate=1)
+    rc = run_lmp(RESTART_B, tmp_path, recreate=1, h=28.5)
     check_ok(rc)
-    assert "reference density of fluid type 2" in rc.out
+    assert re.search(r"reference density of fluid type 2 = [0-9.eE+-]+\n", rc.out)
+    assert "WARNING: Pair style saltdem/viscous: the reference density of fluid type 2 was " \
+        "measured again" in rc.out
     c = read_dump(tmp_path / "final.dump")
     assert max_diff(a, c) / PACK["W"] > 1e-8
 
@@ -583,6 +590,31 @@ def test_good_deck_runs(lmp):
     r = lmp(err_deck())
     check_ok(r)
     assert "reference density of fluid type 1" in r.out
+
+
+def test_minimize_and_run0_leave_the_density_alone(lmp):
+    """The salt's continuity density is state, integrated in the integrator's stage of a run
+    (fix SALTDEM_DENSITY): a minimization (force calls outside the time integration) and
+    'run 0' leave the summed density of the salt as the run left it; before, the pair style
+    integrated it in its force computation, and minimize changed it."""
+    # discs of diameter 21 at spacing 20 overlap: the minimization has energy to lower
+    deck = err_deck(nrun=0).replace("diameter 19", "diameter 21").replace("run 0\n", """velocity salt create 1 7 loop geom
+run 20
+compute rs all reduce sum f_SALTDEM_DENSITY
+thermo_style custom step pe c_rs
+thermo_modify format float %.17g
+thermo 1
+run 0
+minimize 0 0 10 10
+run 0
+""")
+    r = lmp(deck)
+    check_ok(r)
+    before, during, after = r.thermo(1), r.thermo(2), r.thermo(3)
+    assert len(during["c_rs"]) > 2 and during["Step"][-1] > during["Step"][0]    # it minimized
+    assert before["c_rs"][0] > 0
+    assert set(during["c_rs"]) == {before["c_rs"][0]}
+    assert after["c_rs"][0] == before["c_rs"][0]
 
 
 PC_GOOD = ("1 1 5e8 1e7 fluid 28 1e8", "2 2 5e8 5e9 contact 0.5",

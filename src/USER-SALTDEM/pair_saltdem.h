@@ -194,7 +194,7 @@ class PairSaltdem : public Pair {
   // history changes between releases, and a file of another layout must stop the run rather
   // than be misread (negative: the files before the mark began with a positive setting; the
   // date of the layout, so that the mark does not look like an ordinary value)
-  static constexpr double RESTART_FORMAT = -20261123.0;
+  static constexpr double RESTART_FORMAT = -20261207.0;
   void write_restart_format(FILE *fp);
   void read_restart_format(FILE *fp);
   void check_types(int narg, char **arg, int nmin, const char *usage, int &ilo, int &ihi,

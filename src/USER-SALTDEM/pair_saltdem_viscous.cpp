@@ -10,6 +10,7 @@
 
 #include "pair_saltdem_viscous.h"
 
+#include "fix_saltdem_density.h"
 #include "saltdem_check.h"
 
 #include "comm.h"
@@ -28,16 +29,14 @@
 
 using namespace LAMMPS_NS;
 
-static const char RHO_FIX_ID[] = "SALTDEM_VISCOUS_RHO";
-
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
-    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr), apress(nullptr), rho(nullptr), index_rho(-1), fluidself(nullptr), isfluid(nullptr), nmax(0),
-    any_fluid(false),
-    calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.5),
-    calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
+    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
+    apress(nullptr), scratch(nullptr), fix_density(nullptr), fluidself(nullptr),
+    isfluid(nullptr), nmax(0), any_fluid(false), calibration(DEFAULT_CALIBRATION),
+    correction(DEFAULT_CORRECTION), viscfactor(0.5), calibration_checked(DEFAULT_CALIBRATION),
+    salt_inertia(1.0)
 {
   comm_forward = 2;
-  comm_reverse = 1;
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -47,10 +46,11 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(eta);
   memory->destroy(vol);
   memory->destroy(apress);
-  memory->destroy(rho);
+  memory->destroy(scratch);
   memory->destroy(isfluid);
   memory->destroy(fluidself);
-  if (modify->get_fix_by_id(RHO_FIX_ID)) modify->delete_fix(RHO_FIX_ID);
+  // the salt's density is this pair style's state: it goes with it
+  if (!density_id.empty() && modify->get_fix_by_id(density_id)) modify->delete_fix(density_id);
 }
 
 void PairSaltdemViscous::allocate_params(int n)
@@ -114,9 +114,9 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
   auto value = [&](const char *str, const char *what) {
     return SaltDEM::numeric(FLERR, str, fmt::format("Pair style {}: {}", name, what), lmp);
   };
-  p.eta = value(arg[2], "eta");
+  const double eta_given = value(arg[2], "eta");
   p.kn = value(arg[3], "kn");
-  if (p.eta <= 0.0) error->all(FLERR, "Pair style {}: eta = {} must be > 0", name, p.eta);
+  if (eta_given <= 0.0) error->all(FLERR, "Pair style {}: eta = {} must be > 0", name, eta_given);
   if (p.kn < 0.0) error->all(FLERR, "Pair style {}: kn = {} must be >= 0", name, p.kn);
   p.ratio = 1.0;
 
@@ -150,16 +150,7 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
 
   assign_coeffs(ilo, ihi, jlo, jhi, [&](int i, int j) {
     params[i][j] = p;
-    eta[i][j] = p.eta;
-    // under pair hybrid, whose restart files hold no coefficients, the pair_coeff given
-    // again after read_restart keeps the reference density of the file (same kernel h)
-    if (i == j && p.mode == SaltDEM::VISCOUS_FLUID && i < (int) rho0_restart.size() &&
-        rho0_restart[i] > 0.0 && fabs(h_restart[i] - p.h) <= 1e-12 * p.h) {
-      params[i][i].rho0 = rho0_restart[i];
-      if (comm->me == 0)
-        utils::logmesg(lmp, "pair {}: reference density of fluid type {} = {:.15g} (from the "
-                       "restart file)\n", name, i, rho0_restart[i]);
-    }
+    eta[i][j] = eta_given;
   });
 }
 
@@ -178,20 +169,16 @@ void PairSaltdemViscous::mix(int i, int j)
                b.mode == SaltDEM::VISCOUS_FLUID ? "fluid" : "contact", i, j);
   auto &p = params[i][j];
   p = a;
-  p.eta = mix_series(eta[i][i], eta[j][j]);
+  eta[i][j] = mix_series(eta[i][i], eta[j][j]);
   p.kn = mix_series(a.kn, b.kn);
   p.h = 0.5 * (a.h + b.h);
   p.K = sqrt(a.K * b.K);
-  p.rho0 = 0.0;
   p.ratio = 0.5 * (a.ratio + b.ratio);
   p.gap = 0.5 * (a.gap + b.gap);
-  eta[i][j] = p.eta;
 }
 
 void PairSaltdemViscous::init_style()
 {
-  rho0_restart.clear();    // only the pair_coeff commands before the first run keep them
-  h_restart.clear();
   dim2 = (domain->dimension == 2);
   volfac = dim2 ? M_PI : 4.0 * M_PI / 3.0;
   any_fluid = false;
@@ -202,23 +189,46 @@ void PairSaltdemViscous::init_style()
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID) any_fluid = true;
   }
-  // the continuity density of fluid particles lives with the atoms
+  // the continuity density of the fluid particles is the state of an internal fix
+  // (FixSaltdemDensity), created here so that it finds its data in a restart file.  Its ID:
+  // SALTDEM_DENSITY, or SALTDEM_DENSITY_N for the N-th saltdem/viscous sub-style of pair
+  // hybrid (N > 1), the same for the same deck after read_restart
+  fix_density = nullptr;
   if (any_fluid) {
-    if (!modify->get_fix_by_id(RHO_FIX_ID))
-      modify->add_fix(fmt::format("{} all property/atom d_saltdem_rho writedata no", RHO_FIX_ID));
-    int flag, cols;
-    index_rho = atom->find_custom("saltdem_rho", flag, cols);
-    if (index_rho < 0 || flag != 1 || cols != 0)
-      error->all(FLERR, "Pair style {}: per-atom property d_saltdem_rho is missing", name);
+    int nth = 1;
+    if (force->pair != this)
+      for (int n = 1; n <= 64; n++)
+        if (force->pair_match(name, 0, n) == this) {
+          nth = n;
+          break;
+        }
+    density_id = (nth == 1) ? "SALTDEM_DENSITY" : fmt::format("SALTDEM_DENSITY_{}", nth);
+    Fix *f = modify->get_fix_by_id(density_id);
+    if (!f) f = modify->add_fix(fmt::format("{} all SALTDEM_DENSITY", density_id));
+    fix_density = dynamic_cast<FixSaltdemDensity *>(f);
+    if (!fix_density)
+      error->all(FLERR, "Pair style {}: fix ID {} is taken by a fix of style {}; the pair style "
+                 "keeps the salt's density in an internal fix of that ID", name, density_id,
+                 f->style);
+    fix_density->pair = this;
   }
   PairSaltdem::init_style();
 }
 
-/* the kernel density rho[i] = sum_j m_j W_ij (j = i included) of every owned
-   atom of a type whose own pair is FLUID, over the FLUID pairs of the list
-   (summed onto the owners with newton on): once, for the reference density */
+/* the kernel density out[i] = sum_j m_j W_ij (j = i included) of every owned atom of a type
+   whose own pair is FLUID, over the FLUID pairs of the list, owned and ghost atoms (with
+   newton on the caller sums the ghosts' parts onto their owners): for the reference density
+   (FixSaltdemDensity) */
 
-template <int DIM> void PairSaltdemViscous::kernel_density()
+void PairSaltdemViscous::kernel_density(double *out)
+{
+  if (domain->dimension == 2)
+    kernel_density<2>(out);
+  else
+    kernel_density<3>(out);
+}
+
+template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
 {
   const auto x = atom->x ? (const double (*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
   const double *m = atom->rmass;
@@ -228,7 +238,7 @@ template <int DIM> void PairSaltdemViscous::kernel_density()
   const int newton_pair = force->newton_pair;
   for (int i = 0; i < nall; i++) {
     const int t = type[i];
-    rho[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0) : 0.0;
+    out[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0) : 0.0;
   }
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -241,97 +251,53 @@ template <int DIM> void PairSaltdemViscous::kernel_density()
       double rsq = 0.0;
       for (int k = 0; k < DIM; k++) rsq += (x[i][k] - x[j][k]) * (x[i][k] - x[j][k]);
       const double w = SaltDEM::wendland_c2(DIM, p.h, sqrt(rsq));
-      rho[i] += m[j] * w;
-      if (newton_pair || j < nlocal) rho[j] += m[i] * w;
+      out[i] += m[j] * w;
+      if (newton_pair || j < nlocal) out[j] += m[i] * w;
     }
   }
-  if (newton_pair) comm->reverse_comm(this);
 }
 
-/* FLUID density, volume and pressure.  The density of a fluid particle is
-   carried per atom (fix property/atom d_saltdem_rho, so it migrates and
-   restarts with the atom) and follows the continuity equation
+/* FLUID volume and pressure.  The density of a fluid particle is the state of the internal
+   fix FixSaltdemDensity (it migrates and restarts with the atom) and follows the continuity
+   equation
      d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
-   over the FLUID pairs (walls and cover included: moving boundaries compress
-   the fluid), summed in the force pass and applied after it (post_loop), as
-   LAMMPS's SPH styles do: the pressure of a step is that of the density at
-   the end of the step before.  It starts at the reference rho0 of its type,
-   the mean kernel density sum_j m_j W_ij of that type at the first step, so
-   the fluid starts free of pressure.  A summed kernel density would instead
-   drift upwards as particles pair up (the mean of sum_j W grows while the
-   volume does not).  Here, before the force pass: the volume m / rho, the
-   pressure P = K (rho / rho0 - 1) and a = m P / rho^2, sent to the ghosts. */
+   over the FLUID pairs (walls and cover included: moving boundaries compress the fluid),
+   summed in the force pass into the fix's d rho / dt and integrated by the fix after it, as
+   LAMMPS's SPH styles do: the pressure of a step is that of the density at the end of the
+   step before.  It starts at the reference rho0 of its type, the mean kernel density
+   sum_j m_j W_ij of that type at the setup of the first run (the fix measures it), so the
+   fluid starts free of pressure.  A summed kernel density would instead drift upwards as
+   particles pair up (the mean of sum_j W grows while the volume does not).  Here, before the
+   force pass: the volume m / rho and a = m P / rho^2 with the equation of state
+   (SaltDEM::particle_volume, SaltDEM::pressure_term), sent to the ghosts. */
 
 void PairSaltdemViscous::pre_loop()
 {
-  // the force pass sums every pair's q (0 for CONTACT pairs) into rho, or under -sf omp into
-  // one slice per thread (post_loop adds them up): needed with no FLUID pair too
+  // the force pass sums every pair's q (0 for CONTACT pairs) into the fix's d rho / dt, or
+  // under -sf omp into one slice per thread (post_loop adds them up): needed with no FLUID
+  // pair too (into a scratch array then)
   grow_arrays();
   const int nthreads = (suffix_flag & Suffix::OMP) ? comm->nthreads : 1;
   if (nthreads > 1 && (bigint) nthreads * nmax > (bigint) rho_thr.size())
     rho_thr.resize((size_t) nthreads * nmax);
   if (!any_fluid) return;
   const int nlocal = atom->nlocal;
-  double *m = atom->rmass;
-  int *type = atom->type;
-  double *rhoc = atom->dvector[index_rho];
-  const int dim = domain->dimension;
+  const double *m = atom->rmass;
+  const int *type = atom->type;
+  const double *rho = fix_density->rho;
+  const double *rho0 = fix_density->rho0.data();
   const int nt = atom->ntypes;
 
-  // reference density of each fluid type, once: mean kernel density
-  bool need = false;
-  for (int t = 1; t <= nt; t++)
-    if (fluidself[t] && params[t][t].rho0 <= 0.0) need = true;
-  if (need) {
-    if (dim == 2)
-      kernel_density<2>();
-    else
-      kernel_density<3>();
-    // per type: kernel density sum and count, and the continuity densities that atoms
-    // already carry (from an earlier run or a restart file) with their count
-    std::vector<double> sum(4 * (nt + 1), 0.0), all(4 * (nt + 1));
-    for (int i = 0; i < nlocal; i++) {
-      sum[4 * type[i]] += rho[i];
-      sum[4 * type[i] + 1] += 1.0;
-      if (rhoc[i] > 0.0) {
-        sum[4 * type[i] + 2] += rhoc[i];
-        sum[4 * type[i] + 3] += 1.0;
-      }
-    }
-    MPI_Allreduce(sum.data(), all.data(), 4 * (nt + 1), MPI_DOUBLE, MPI_SUM, world);
-    for (int t = 1; t <= nt; t++)
-      if (fluidself[t] && params[t][t].rho0 <= 0.0 && all[4 * t + 1] > 0.0) {
-        params[t][t].rho0 = all[4 * t] / all[4 * t + 1];
-        if (comm->me == 0)
-          utils::logmesg(lmp, "pair {}: reference density of fluid type {} = {:.15g}\n", name,
-                         t, params[t][t].rho0);
-        if (all[4 * t + 3] > 0.0 && comm->me == 0) {
-          const double carried = all[4 * t + 2] / all[4 * t + 3];
-          error->warning(FLERR,
-                         "Pair style {}: the reference density of fluid type {} was "
-                         "measured again ({:.6g}) while its atoms carry densities from an earlier "
-                         "run or a restart file: their pressure is reset (mean now {:.3g}), and a "
-                         "fluid under load loses the pressure that carried it. After read_restart "
-                         "give only the pair_coeff commands, not pair_style, to keep the "
-                         "reference density of the file",
-                         name, t, params[t][t].rho0,
-                         params[t][t].K * (carried / params[t][t].rho0 - 1.0));
-        }
-      }
-  }
-  for (int i = 0; i < nlocal; i++)
-    if (fluidself[type[i]] && rhoc[i] <= 0.0) rhoc[i] = params[type[i]][type[i]].rho0;
-
-  // a boundary particle (wall, cover) gets the volume it would have at the
-  // fluid's reference density
+  // a boundary particle (wall, cover) gets the volume it would have at the fluid's reference
+  // density; a fluid particle created during the run starts at its reference density
   double rhob = 0.0;
   for (int t = 1; t <= nt; t++)
-    if (fluidself[t]) rhob = MAX(rhob, params[t][t].rho0);
+    if (fluidself[t]) rhob = MAX(rhob, rho0[t]);
   for (int i = 0; i < nlocal; i++) {
-    const auto &p = params[type[i]][type[i]];
-    const double r = fluidself[type[i]] ? rhoc[i] : rhob;
-    vol[i] = (r > 0.0) ? m[i] / r : 0.0;
-    apress[i] = (isfluid[type[i]] && p.rho0 > 0.0) ? m[i] * p.K * (r / p.rho0 - 1.0) / (r * r) : 0.0;
+    const int t = type[i];
+    const double r = fluidself[t] ? (rho[i] > 0.0 ? rho[i] : rho0[t]) : rhob;
+    vol[i] = SaltDEM::particle_volume(m[i], r);
+    apress[i] = isfluid[t] ? SaltDEM::pressure_term(m[i], params[t][t].K, r, rho0[t]) : 0.0;
   }
   comm->forward_comm(this);
 }
@@ -341,49 +307,43 @@ void PairSaltdemViscous::grow_arrays()
   if (atom->nmax <= nmax) return;
   memory->destroy(vol);
   memory->destroy(apress);
-  memory->destroy(rho);
+  memory->destroy(scratch);
   nmax = atom->nmax;
   memory->create(vol, nmax, "pair:vol");
   memory->create(apress, nmax, "pair:apress");
-  memory->create(rho, nmax, "pair:rho");
+  if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
 }
 
-/* the array the force pass sums d rho / dt into: rho, or thread tid's slice
-   (zeroed here, by the thread that fills it) */
+/* the array the force pass sums d rho / dt into: the density fix's, or thread tid's slice
+   (zeroed here, by the thread that fills it); with no FLUID pair a scratch array */
 
 double *PairSaltdemViscous::loop_sum(int tid, int nthreads)
 {
   const int nall = atom->nlocal + atom->nghost;
-  double *out = (nthreads > 1) ? rho_thr.data() + (size_t) tid * nmax : rho;
+  if (!any_fluid && !scratch) memory->create(scratch, nmax, "pair:scratch");
+  double *sum = any_fluid ? fix_density->drho : scratch;
+  double *out = (nthreads > 1) ? rho_thr.data() + (size_t) tid * nmax : sum;
   for (int i = 0; i < nall; i++) out[i] = 0.0;
   return out;
 }
 
-/* continuity: rho += dt * d rho / dt for the owned fluid particles (not
-   during setup, like the history of the contact styles) */
+/* -sf omp: the threads' slices of d rho / dt added up (not during setup, when the fix does not
+   integrate) */
 
 void PairSaltdemViscous::post_loop(int nthreads)
 {
-  if (!any_fluid || update->setupflag) return;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  if (nthreads > 1) {
-    const double *part = rho_thr.data();
+  if (!any_fluid || update->setupflag || nthreads <= 1) return;
+  const int nall = atom->nlocal + atom->nghost;
+  const double *part = rho_thr.data();
+  double *drho = fix_density->drho;
 #if defined(_OPENMP)
-#pragma omp parallel for num_threads(nthreads) schedule(static) LMP_DEFAULT_NONE LMP_SHARED(part, nall, nthreads)
+#pragma omp parallel for num_threads(nthreads) schedule(static) LMP_DEFAULT_NONE LMP_SHARED(part, nall, nthreads, drho)
 #endif
-    for (int i = 0; i < nall; i++) {
-      double add = 0.0;
-      for (int t = 0; t < nthreads; t++) add += part[(size_t) t * nmax + i];
-      rho[i] = add;
-    }
+  for (int i = 0; i < nall; i++) {
+    double add = 0.0;
+    for (int t = 0; t < nthreads; t++) add += part[(size_t) t * nmax + i];
+    drho[i] = add;
   }
-  if (force->newton_pair) comm->reverse_comm(this);
-  const int *type = atom->type;
-  double *rhoc = atom->dvector[index_rho];
-  const double dt = update->dt;
-  for (int i = 0; i < nlocal; i++)
-    if (fluidself[type[i]]) rhoc[i] += dt * rho[i];
 }
 
 int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -405,20 +365,9 @@ void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
   }
 }
 
-int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
-{
-  for (int i = 0; i < n; i++) buf[i] = rho[first + i];
-  return n;
-}
-
-void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
-{
-  for (int i = 0; i < n; i++) rho[list[i]] += buf[i];
-}
-
 double PairSaltdemViscous::memory_usage()
 {
-  return PairSaltdem::memory_usage() + 3.0 * nmax * sizeof(double);
+  return PairSaltdem::memory_usage() + (scratch ? 3.0 : 2.0) * nmax * sizeof(double);
 }
 
 /* the dashpots from the viscosity, which may have been changed through extract("eta") since
@@ -435,13 +384,13 @@ void PairSaltdemViscous::derive(int i, int j)
                  "or fix saltdem/viscosity), must be > 0, finite and of a magnitude in [{:g}, "
                  "{:g}]; check the variable or the viscosity that sets it",
                  name, eta[i][j], i, j, SaltDEM::MIN_VALUE, SaltDEM::MAX_VALUE);
-    params[i][j].eta = eta[i][j];
   }
   auto &p = params[i][j];
+  const double e = eta[i][j];
   p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
   p.ih2 = (p.h > 0.0) ? 0.5 / p.h : 0.0;
-  p.kfac = 2.0 * correction * p.eta * p.cw;
-  p.gn = calibration * p.eta;
+  p.kfac = 2.0 * correction * e * p.cw;
+  p.gn = calibration * e;
   p.gt = p.ratio * p.gn;
   if (!std::isfinite(p.cw) || !std::isfinite(p.kfac) || !std::isfinite(p.gn) ||
       !std::isfinite(p.gt) || !std::isfinite(p.ih2))
@@ -450,8 +399,8 @@ void PairSaltdemViscous::derive(int i, int j)
                "correction eta W'(h) = {}, calibration eta = {}, tangential ratio x that = {}) "
                "from eta = {}, h = {}, correction = {}, calibration = {}, tangential ratio = {}; "
                "use values of physical size",
-               name, i, j, p.kfac, p.gn, p.gt, p.eta, p.h, correction, calibration, p.ratio);
-  eta[j][i] = eta[i][j] = p.eta;
+               name, i, j, p.kfac, p.gn, p.gt, e, p.h, correction, calibration, p.ratio);
+  eta[j][i] = e;
 }
 
 /* a change of the viscosity or calibration since the last time step check (during a run: fix
@@ -460,14 +409,14 @@ void PairSaltdemViscous::derive(int i, int j)
 double PairSaltdemViscous::init_one(int i, int j)
 {
   const double cut = PairSaltdem::init_one(i, j);
-  const auto &p = params[i][j];
+  const double e = eta[i][j];
   if (setflag[i][j] && i < (int) eta_checked.size() && j < (int) eta_checked[i].size() &&
-      (eta_checked[i][j] != p.eta || calibration_checked != calibration)) {
+      (eta_checked[i][j] != e || calibration_checked != calibration)) {
     recheck = true;
     recheck_what = calibration_checked != calibration
         ? fmt::format("the calibration ({:.6g} -> {:.6g})", calibration_checked, calibration)
         : fmt::format("eta of types {} {} ({:.6g} -> {:.6g} Pa s, e.g. by fix adapt)", i, j,
-                      eta_checked[i][j], p.eta);
+                      eta_checked[i][j], e);
   }
   return cut;
 }
@@ -536,15 +485,25 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
 
 /* ---------------------------------------------------------------------- */
 
+/* the viscosity is not a member of the coefficient struct: it follows them */
+
+void PairSaltdemViscous::write_restart(FILE *fp)
+{
+  PairSaltdem::write_restart(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (setflag[i][j]) fwrite(&eta[i][j], sizeof(double), 1, fp);
+}
+
 void PairSaltdemViscous::read_restart(FILE *fp)
 {
   PairSaltdem::read_restart(fp);
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++)
-      if (setflag[i][j]) eta[i][j] = params[i][j].eta;
-  // the coefficients came with the file: a pair_coeff given again resets rho0 as usual
-  rho0_restart.clear();
-  h_restart.clear();
+      if (setflag[i][j]) {
+        if (comm->me == 0) utils::sfread(FLERR, &eta[i][j], sizeof(double), 1, fp, nullptr, error);
+        MPI_Bcast(&eta[i][j], 1, MPI_DOUBLE, 0, world);
+      }
 }
 
 void PairSaltdemViscous::write_restart_settings(FILE *fp)
@@ -554,18 +513,6 @@ void PairSaltdemViscous::write_restart_settings(FILE *fp)
   fwrite(&correction, sizeof(double), 1, fp);
   fwrite(&dtfactor, sizeof(double), 1, fp);
   fwrite(&viscfactor, sizeof(double), 1, fp);
-  // the reference density (and h) of each fluid type: pair hybrid writes only the settings of
-  // its sub-styles, and a restarted fluid must not measure it again
-  const int n = allocated ? atom->ntypes : 0;
-  fwrite(&n, sizeof(int), 1, fp);
-  for (int t = 1; t <= n; t++) {
-    double v[2] = {0.0, 0.0};
-    if (setflag[t][t] && params[t][t].mode == SaltDEM::VISCOUS_FLUID) {
-      v[0] = params[t][t].rho0;
-      v[1] = params[t][t].h;
-    }
-    fwrite(v, sizeof(double), 2, fp);
-  }
 }
 
 void PairSaltdemViscous::read_restart_settings(FILE *fp)
@@ -578,18 +525,6 @@ void PairSaltdemViscous::read_restart_settings(FILE *fp)
   correction = buf[1];
   dtfactor = buf[2];
   viscfactor = buf[3];
-  int n = 0;
-  if (comm->me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
-  MPI_Bcast(&n, 1, MPI_INT, 0, world);
-  std::vector<double> v(2 * n + 2, 0.0);
-  if (comm->me == 0 && n > 0) utils::sfread(FLERR, v.data(), sizeof(double), 2 * n, fp, nullptr, error);
-  MPI_Bcast(v.data(), 2 * n, MPI_DOUBLE, 0, world);
-  rho0_restart.assign(n + 1, 0.0);
-  h_restart.assign(n + 1, 0.0);
-  for (int t = 1; t <= n; t++) {
-    rho0_restart[t] = v[2 * (t - 1)];
-    h_restart[t] = v[2 * (t - 1) + 1];
-  }
 }
 
 /* the inertia factor S of the viscous discs: the largest of the integrated atoms of the types

@@ -25,6 +25,7 @@ class PairSaltdemViscous : public PairSaltdem {
   void settings(int, char **) override;
   void coeff(int, char **) override;
   double init_one(int, int) override;
+  void write_restart(FILE *) override;
   void read_restart(FILE *) override;
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
@@ -32,16 +33,24 @@ class PairSaltdemViscous : public PairSaltdem {
   void pre_loop() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
-  int pack_reverse_comm(int, int, double *) override;
-  void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
   double *loop_sum(int tid, int nthreads) override;
   void post_loop(int nthreads) override;
 
+  // what the density fix (FixSaltdemDensity) reads: some type pair is FLUID; per type, its
+  // own pair is FLUID; the kernel h and bulk modulus K of a type's own pair; the kernel
+  // density of the owned and ghost atoms
+  bool any_fluid_pair() const { return any_fluid; }
+  const int *fluid_types() const { return fluidself; }
+  double fluid_h(int t) const { return params[t][t].h; }
+  double fluid_K(int t) const { return params[t][t].K; }
+  void kernel_density(double *out);
+
   // the force law, inlined into the shared pair loop (PairSaltdem::loop): FLUID pairs need
   // only positions and velocities of the centres and make no torque.  q: the pair's term
-  // v_ij . grad_i W_ij of the continuity equation, summed in the same pass (post_loop)
+  // v_ij . grad_i W_ij of the continuity equation, summed in the same pass into the density
+  // fix's d rho / dt
   static constexpr bool HISTORY = false;    // no values kept per pair
   static constexpr bool PAIR_SUM = true;
   template <int DIM, int EVFLAG>
@@ -56,14 +65,8 @@ class PairSaltdemViscous : public PairSaltdem {
                             (DIM == 3) ? a.v[i][2] - a.v[j][2] : 0.0};
       // SPH pressure m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) with a_i = m_i P_i / rho_i^2;
       // a particle that is not fluid (wall, cover) mirrors the fluid's pressure
-      const double *m = a.rmass;
-      double pc = 0.0;
-      if (isfluid[itype] && isfluid[jtype])
-        pc = m[j] * apress[i] + m[i] * apress[j];
-      else if (isfluid[itype])
-        pc = 2.0 * m[j] * apress[i];
-      else if (isfluid[jtype])
-        pc = 2.0 * m[i] * apress[j];
+      const double pc = SaltDEM::pressure_pair(isfluid[itype], isfluid[jtype], a.rmass[i],
+                                               a.rmass[j], apress[i], apress[j]);
       return SaltDEM::viscous_fluid_force<DIM, EVFLAG>(p, d, vr, r, a.radius[i] + a.radius[j],
                                                        vol[i], vol[j], pc, f, evdwl, q)
           ? LAW_TOUCH
@@ -88,8 +91,9 @@ class PairSaltdemViscous : public PairSaltdem {
   double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
   double *vol;        // FLUID: particle volume m / rho, owned and ghost atoms
   double *apress;     // FLUID: m P / rho^2 per atom (pressure term), owned and ghost atoms
-  double *rho;        // FLUID: work array (kernel density, or d rho / dt), owned and ghost atoms
-  int index_rho;      // FLUID: per-atom continuity density (fix property/atom d_saltdem_rho)
+  double *scratch;    // no FLUID pair: what the force pass sums the (zero) q into
+  class FixSaltdemDensity *fix_density;    // FLUID: the density (state) and d rho / dt
+  std::string density_id;                  // its ID
   int *fluidself;     // per type: its own pair is FLUID (continuity density, reference density)
   int *isfluid;       // per type: FLUID with K > 0 (carries pressure)
   int nmax;           // allocated length of vol
@@ -99,12 +103,8 @@ class PairSaltdemViscous : public PairSaltdem {
   double viscfactor;  // safety factor on the viscous stable dt
   bool dim2;          // 2D: discs
   double volfac;      // pi (2D) or 4 pi / 3 (3D)
-  // reference density and h per fluid type from a restart file under pair hybrid (which
-  // stores no coefficients, only sub-style settings): kept by the pair_coeff given again
-  std::vector<double> rho0_restart, h_restart;
-
-  template <int DIM> void kernel_density();
-  void grow_arrays();    // vol, apress, rho for the owned and ghost atoms
+  template <int DIM> void kernel_density(double *out);
+  void grow_arrays();    // vol, apress (and scratch) for the owned and ghost atoms
   std::vector<double> rho_thr;    // -sf omp: per-thread partial sums of d rho / dt
   void allocate_params(int) override;
   void *pair_params(int i, int j) override { return &params[i][j]; }

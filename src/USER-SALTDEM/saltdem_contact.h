@@ -349,20 +349,53 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
 
 enum ViscousMode { VISCOUS_FLUID = 0, VISCOUS_CONTACT = 1 };
 
+/* the coefficients of one type pair; the viscosity eta itself is kept by the pair style
+   (one per type pair, which fix adapt changes) and enters only through the derived dashpots */
 struct ViscousParams {
   int mode;         // VISCOUS_FLUID or VISCOUS_CONTACT
-  double eta;       // dynamic viscosity (Pa s)
   double kn;        // elastic normal stiffness (force/length)
   double h;         // FLUID: smoothing length; the kernel reaches 2h
   double K;         // FLUID: bulk modulus of the equation of state P = K (rho/rho0 - 1)
-  double rho0;      // FLUID (I,I only): reference kernel density, taken at the first step
   double cw;        // FLUID: |dW/dr| / r = cw (1 - r/2h)^3 (derived)
   double ih2;       // FLUID: 1 / 2h (derived)
-  double kfac;      // FLUID: 2 eta * kernel constant (derived: dimension, h)
+  double kfac;      // FLUID: 2 eta * kernel constant (derived: eta, dimension, h)
   double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
   double ratio;     // CONTACT: tangential / normal dashpot coefficient
   double gn, gt;    // CONTACT: dashpot coefficients (derived: calibration * eta)
 };
+
+/* FLUID: the equation of state P = K (rho / rho0 - 1): a fluid at its reference density
+   carries no pressure */
+inline double eos_pressure(double K, double rho, double rho0)
+{
+  return K * (rho / rho0 - 1.0);
+}
+
+/* FLUID: the volume m / rho of a particle of mass m and density rho (0 without a density) */
+inline double particle_volume(double m, double rho)
+{
+  return (rho > 0.0) ? m / rho : 0.0;
+}
+
+/* FLUID: the pressure term a = m P / rho^2 of a particle (eos_pressure written out in the
+   order the scenes' trajectories were computed with); 0 without a reference density */
+inline double pressure_term(double m, double K, double rho, double rho0)
+{
+  return (rho0 > 0.0) ? m * K * (rho / rho0 - 1.0) / (rho * rho) : 0.0;
+}
+
+/* FLUID: the SPH pressure pair coefficient pc = m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) from the
+   pressure terms a = m P / rho^2 of particles i and j, where fi, fj say whether each carries
+   a pressure (its own pair is FLUID with K > 0).  The boundary rule: a particle that carries
+   none (a wall, the cover, a fluid with K = 0) mirrors its partner's, so the fluid's
+   pressure pushes on it as on more fluid; two such particles exert none. */
+inline double pressure_pair(bool fi, bool fj, double mi, double mj, double ai, double aj)
+{
+  if (fi && fj) return mj * ai + mi * aj;
+  if (fi) return 2.0 * mj * ai;
+  if (fj) return 2.0 * mi * aj;
+  return 0.0;
+}
 
 /* Wendland C2 kernel W(q = r/h) = A (1 - q/2)^4 (1 + 2q) on r < 2h, with
    A = 7/(4 pi h^2) in 2D and 21/(16 pi h^3) in 3D */

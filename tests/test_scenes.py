@@ -188,6 +188,15 @@ def test_resume_from_restart_file(tmp_path, name):
     a, b = dumps(full, name)[-1], dumps(part, name)[-1]
     for c in ("x", "y", "vx", "vy"):
         np.testing.assert_allclose(b[c], a[c], rtol=1e-10, atol=1e-10 * np.abs(a[c]).max())
+    # the model time goes on too (the figures' --rate reads it): a restart file written in the
+    # middle of a run must not lose the time since that run began
+    last = lambda wd: sorted(wd.glob(f"dump.{name}.*.txt"), key=lambda p: int(p.name.split(".")[2]))[-1]
+    assert dump_time(last(part)) == pytest.approx(dump_time(last(full)), rel=1e-12)
+
+
+def dump_time(path):
+    lines = path.read_text().splitlines()
+    return float(lines[lines.index("ITEM: TIME") + 1])
 
 
 def test_missing_restart_file_stops(tmp_path):

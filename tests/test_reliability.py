@@ -1000,23 +1000,97 @@ write_restart r.restart
 """
 
 
-@pytest.mark.parametrize("style", ["saltdem/cohesive", "saltdem/viscous"])
-def test_restart_of_another_format_stops(lmp, tmp_path, style):
-    """A restart file whose SaltDEM restart format differs from this build's (the coefficients
-    and the contact history are laid out per release) stops read_restart with a message that
-    names the style and both formats; the unaltered file reads back."""
+MARK = -20261214.0    # SaltDEM::RESTART_MARK
+
+
+def format_file(lmp, tmp_path):
+    """A restart file of the hybrid deck; its bytes and the offsets of the two pair sub-styles'
+    restart settings (written in the order of pair_style hybrid, before any fix's data)."""
     import struct
     deck = FORMAT_DECK.replace("${pstyle}", "hybrid saltdem/cohesive saltdem/viscous")
     check_ok(lmp(deck))
     check_ok(lmp("read_restart r.restart\n"))
     raw = (tmp_path / "r.restart").read_bytes()
-    mark = struct.pack("d", -20261207.0)
-    assert raw.count(mark) == 2, "one format mark per SaltDEM sub-style"
+    mark = struct.pack("d", MARK)
     first = raw.index(mark)
-    # the sub-styles are written in the order of pair_style hybrid: cohesive, then viscous
-    at = first if style == "saltdem/cohesive" else raw.index(mark, first + 1)
-    (tmp_path / "r.restart").write_bytes(raw[:at] + struct.pack("d", -20250101.0) + raw[at + 8:])
+    second = raw.index(mark, first + 8)
+    # the pair sub-styles, then the density fix's global data: each begins with the mark
+    assert raw.count(mark) == 3
+    return raw, {"saltdem/cohesive": first, "saltdem/viscous": second}
+
+
+@pytest.mark.parametrize("style", ["saltdem/cohesive", "saltdem/viscous"])
+def test_restart_of_another_format_stops(lmp, tmp_path, style):
+    """A restart file whose SaltDEM restart mark differs from this build's (an older layout:
+    raw coefficient structs) stops read_restart with a message that names the style and both
+    formats; the unaltered file reads back."""
+    import struct
+    raw, at = format_file(lmp, tmp_path)
+    at = at[style]
+    (tmp_path / "r.restart").write_bytes(raw[:at] + struct.pack("d", -20261123.0) + raw[at + 8:])
     r = lmp("read_restart r.restart\n")
-    line = assert_error(r, f"Pair style {style}", "restart format -20250101",
-                        "restart format -20261207")
+    line = assert_error(r, f"Pair style {style}", "restart format -20261123",
+                        "restart format -20261214")
     assert "data file" in line
+
+
+@pytest.mark.parametrize("style", ["saltdem/cohesive", "saltdem/viscous"])
+def test_restart_names_its_fields_and_version(lmp, tmp_path, style):
+    """Each pair style writes its own layout version, its settings by name and value and the
+    names of its coefficients (derived values are not written: init_one() computes them).  A
+    file of another version, or whose list of names differs from the style's, stops
+    read_restart naming both."""
+    import struct
+    raw, at = format_file(lmp, tmp_path)
+    for name in (b"dtfactor", b"zeta_n", b"mu_r", b"calibration", b"viscfactor", b"tangential"):
+        assert name in raw, name
+    for derived in (b"kfac", b"ih2"):
+        assert derived not in raw
+    at = at[style]
+    version = struct.unpack("i", raw[at + 8:at + 12])[0]
+    assert version == 1
+    (tmp_path / "r.restart").write_bytes(raw[:at + 8] + struct.pack("i", 7) + raw[at + 12:])
+    assert_error(lmp("read_restart r.restart\n"), f"Pair style {style}", "layout version 7",
+                 "reads layout 1")
+    # a setting renamed in the file (same length): the lists differ
+    old, new = (b"dtfactor", b"dtFACTOR")
+    k = raw.index(old, at)
+    (tmp_path / "r.restart").write_bytes(raw[:k] + new + raw[k + len(old):])
+    line = assert_error(lmp("read_restart r.restart\n"), f"Pair style {style}", "settings are",
+                        "dtFACTOR")
+    assert "this version of the style has" in line and "dtfactor" in line
+
+
+def test_restart_of_an_unmarked_fix_stops(lmp, tmp_path):
+    """The SaltDEM fixes with restart data write the mark and their layout version too: data
+    of an older layout (the displacement alone) stop the run instead of being misread."""
+    import struct
+    deck = """units si
+dimension 2
+atom_style sphere
+boundary f f p
+comm_modify vel yes
+region box block -100 100 -100 100 -1 1
+create_box 1 box
+create_atoms 1 single 0 0 0
+create_atoms 1 single 20 0 0
+set type 1 diameter 10
+set type 1 density/disc 2200
+group hw id 2
+pair_style saltdem/cohesive
+pair_coeff * * 1e9 0 0.5 0 0 0
+fix fault hw saltdem/fault dip 60 rate 2 target 10
+timestep 0.1
+run 3
+write_restart r.restart
+"""
+    check_ok(lmp(deck))
+    cont = "read_restart r.restart\ncomm_modify vel yes\n" \
+        "fix fault hw saltdem/fault dip 60 rate 2 target 10\nrun 1\n"
+    check_ok(lmp(cont))
+    raw = (tmp_path / "r.restart").read_bytes()
+    mark = struct.pack("d", MARK)
+    at = raw.index(mark, raw.index(mark) + 8)    # after the pair style's: the fault's
+    assert struct.unpack("d", raw[at + 16:at + 24])[0] == pytest.approx(0.6)
+    (tmp_path / "r.restart").write_bytes(raw[:at] + struct.pack("d", 0.6) + raw[at + 8:])
+    assert_error(lmp(cont), "Fix saltdem/fault fault", "another SaltDEM version")

@@ -12,6 +12,7 @@
 #include "fix_saltdem_density.h"
 
 #include "pair_saltdem_viscous.h"
+#include "saltdem_check.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -221,17 +222,19 @@ int FixSaltdemDensity::maxsize_restart()
   return 2;
 }
 
-/* global restart: the layout version, the number of types, then rho0 and h per type */
+/* global restart: the SaltDEM mark, the layout version, the number of types, then rho0 and h
+   per type */
 
 void FixSaltdemDensity::write_restart(FILE *fp)
 {
   const int nt = atom->ntypes;
-  std::vector<double> list(2 + 2 * nt, 0.0);
-  list[0] = RESTART_VERSION;
-  list[1] = nt;
+  std::vector<double> list(3 + 2 * nt, 0.0);
+  list[0] = SaltDEM::RESTART_MARK;
+  list[1] = RESTART_VERSION;
+  list[2] = nt;
   for (int t = 1; t <= nt && t < (int) rho0.size(); t++) {
-    list[2 * t] = rho0[t];
-    list[2 * t + 1] = h0[t];
+    list[1 + 2 * t] = rho0[t];
+    list[2 + 2 * t] = h0[t];
   }
   if (comm->me == 0) {
     const int size = (int) (list.size() * sizeof(double));
@@ -243,21 +246,21 @@ void FixSaltdemDensity::write_restart(FILE *fp)
 void FixSaltdemDensity::restart(char *buf)
 {
   auto list = (double *) buf;
-  if (list[0] != RESTART_VERSION)
+  if (list[0] != SaltDEM::RESTART_MARK || list[1] != RESTART_VERSION)
     error->all(FLERR,
-               "Fix {}: the restart file holds the salt's densities in layout {} (this version "
-               "reads layout {}); continue with the SaltDEM version that wrote it, or start "
-               "again from a data file",
-               style, list[0], RESTART_VERSION);
-  const int nt = static_cast<int>(list[1]);
+               "Fix {}: the restart file holds the salt's densities in another layout (mark {}, "
+               "version {}; this version reads {:.0f}, {}); continue with the SaltDEM version "
+               "that wrote it, or start again from a data file",
+               style, list[0], list[1], SaltDEM::RESTART_MARK, RESTART_VERSION);
+  const int nt = static_cast<int>(list[2]);
   if (nt != atom->ntypes)
     error->all(FLERR, "Fix {}: the restart file holds reference densities of {} atom types, the "
                "system has {}", style, nt, atom->ntypes);
   rho0.assign(nt + 1, 0.0);
   h0.assign(nt + 1, 0.0);
   for (int t = 1; t <= nt; t++) {
-    rho0[t] = list[2 * t];
-    h0[t] = list[2 * t + 1];
+    rho0[t] = list[1 + 2 * t];
+    h0[t] = list[2 + 2 * t];
   }
   restored = 1;
 }

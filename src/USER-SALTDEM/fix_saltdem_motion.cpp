@@ -198,16 +198,29 @@ void *FixSaltdemMotion::extract(const char *str, int &dim)
   return nullptr;
 }
 
+/* restart: the SaltDEM mark, the layout version, the drive displacement */
+
 void FixSaltdemMotion::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    int size = sizeof(double);
+    const double list[3] = {SaltDEM::RESTART_MARK, RESTART_VERSION, disp};
+    int size = 3 * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(&disp, sizeof(double), 1, fp);
+    fwrite(list, sizeof(double), 3, fp);
   }
 }
 
 void FixSaltdemMotion::restart(char *buf)
 {
-  memcpy(&disp, buf, sizeof(double));
+  double list[3];
+  memcpy(list, buf, sizeof(double));
+  if (list[0] != SaltDEM::RESTART_MARK)
+    error->all(FLERR, "Fix {} {}: the restart file was written by another SaltDEM version (its "
+               "data of this fix are not marked); continue with the version that wrote it, or "
+               "define the fix under another ID to start its motion from 0", style, id);
+  memcpy(list, buf, sizeof(list));
+  if (list[1] != RESTART_VERSION)
+    error->all(FLERR, "Fix {} {}: the restart file holds this fix's data in layout version {}, "
+               "this version reads layout {}", style, id, list[1], RESTART_VERSION);
+  disp = list[2];
 }

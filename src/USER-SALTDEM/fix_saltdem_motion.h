@@ -47,6 +47,7 @@ class FixSaltdemMotion : public Fix {
   int warned;       // the warning that a step moves a block by much of a disc radius was given
   // a step that moves a block by more than this fraction of the smallest disc radius warns
   static constexpr double JUMP_FRACTION = 0.1;
+  static constexpr double RESTART_VERSION = 1.0;    // layout of the restart data
   std::string usage;
 
   // parse the keywords shared by all motion fixes (rate, target, at_target, and toward where

@@ -55,6 +55,7 @@ class FixSaltdemViscosity : public Fix {
   double strain_rate_model() const { return rate / length / second; }
   double strain_rate_natural() const { return rate / (lambda * length) / second; }
   static constexpr double YEAR = 365.25 * 24.0 * 3600.0;    // s
+  static constexpr double RESTART_VERSION = 1.0;             // layout of the restart data
 };
 
 }    // namespace LAMMPS_NS

@@ -4,6 +4,8 @@
 
 #include "pair_saltdem.h"
 
+#include "saltdem_check.h"
+
 #include "comm.h"
 #include "error.h"
 #include "fix_saltdem_rebuild.h"
@@ -16,6 +18,7 @@
 #include <cstring>
 
 using namespace LAMMPS_NS;
+
 
 /* ---------------------------------------------------------------------- */
 
@@ -353,10 +356,15 @@ double PairSaltdem::init_one(int i, int j)
 void PairSaltdem::write_restart(FILE *fp)
 {
   write_restart_settings(fp);
+  const int n = (int) coeff_names().size();
+  std::vector<double> v(n);
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       fwrite(&setflag[i][j], sizeof(int), 1, fp);
-      if (setflag[i][j]) fwrite(pair_params(i, j), params_size(), 1, fp);
+      if (setflag[i][j]) {
+        pack_coeffs(i, j, v.data());
+        fwrite(v.data(), sizeof(double), n, fp);
+      }
     }
 }
 
@@ -365,36 +373,109 @@ void PairSaltdem::read_restart(FILE *fp)
   read_restart_settings(fp);
   allocate();
   const int me = comm->me;
+  const int n = ncoeff_read;
+  std::vector<double> v(n);
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
       MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
       if (setflag[i][j]) {
-        if (me == 0) utils::sfread(FLERR, pair_params(i, j), params_size(), 1, fp, nullptr, error);
-        MPI_Bcast(pair_params(i, j), (int) params_size(), MPI_BYTE, 0, world);
+        if (me == 0) utils::sfread(FLERR, v.data(), sizeof(double), n, fp, nullptr, error);
+        MPI_Bcast(v.data(), n, MPI_DOUBLE, 0, world);
+        unpack_coeffs(i, j, v.data());
       }
     }
 }
 
-void PairSaltdem::write_restart_format(FILE *fp)
+/* the mark, the style's layout version, its settings by name and value, the names of its
+   coefficients (written by every style, also as a sub-style of pair hybrid) */
+
+void PairSaltdem::write_restart_settings(FILE *fp)
 {
-  const double v = RESTART_FORMAT;
-  fwrite(&v, sizeof(double), 1, fp);
+  static_assert(RESTART_MARK == SaltDEM::RESTART_MARK, "one SaltDEM restart mark");
+  const double mark = RESTART_MARK;
+  fwrite(&mark, sizeof(double), 1, fp);
+  const int version = restart_version();
+  fwrite(&version, sizeof(int), 1, fp);
+  auto write_names = [fp](const std::vector<std::string> &names) {
+    const int n = (int) names.size();
+    fwrite(&n, sizeof(int), 1, fp);
+    for (const auto &s : names) {
+      const int len = (int) s.size();
+      fwrite(&len, sizeof(int), 1, fp);
+      fwrite(s.data(), 1, len, fp);
+    }
+  };
+  const auto settings = setting_names();
+  write_names(settings);
+  std::vector<double> v(settings.size());
+  pack_settings(v.data());
+  fwrite(v.data(), sizeof(double), v.size(), fp);
+  write_names(coeff_names());
 }
 
-void PairSaltdem::read_restart_format(FILE *fp)
+void PairSaltdem::read_restart_settings(FILE *fp)
 {
-  double v = 0.0;
-  if (comm->me == 0) utils::sfread(FLERR, &v, sizeof(double), 1, fp, nullptr, error);
-  MPI_Bcast(&v, 1, MPI_DOUBLE, 0, world);
-  if (v != RESTART_FORMAT)
+  const int me = comm->me;
+  double mark = 0.0;
+  if (me == 0) utils::sfread(FLERR, &mark, sizeof(double), 1, fp, nullptr, error);
+  MPI_Bcast(&mark, 1, MPI_DOUBLE, 0, world);
+  if (mark != RESTART_MARK)
     error->all(FLERR,
                "Pair style {}: the restart file was written by another SaltDEM version ({}; this "
-               "one reads restart format {:.0f}), whose coefficients and contact history are laid "
-               "out differently. Continue the run with the version that wrote it, or start again "
-               "from a data file (write_data) with this one",
-               name, v > 0.0 ? "one before restart formats were marked" :
-                               fmt::format("restart format {:.0f}", v), RESTART_FORMAT);
+               "one reads restart format {:.0f}, which names its fields), whose coefficients and "
+               "contact history are laid out differently. Continue the run with the version "
+               "that wrote it, or start again from a data file (write_data) with this one",
+               name, mark > 0.0 ? "one before restart formats were marked"
+                                : fmt::format("restart format {:.0f}", mark), RESTART_MARK);
+  int version = 0;
+  if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&version, 1, MPI_INT, 0, world);
+  if (version != restart_version())
+    error->all(FLERR,
+               "Pair style {}: the restart file holds its coefficients in layout version {}, this "
+               "version of the style reads layout {}. Continue the run with the SaltDEM version "
+               "that wrote it, or start again from a data file (write_data) with this one",
+               name, version, restart_version());
+  const auto settings = setting_names();
+  read_names(fp, settings, "settings");
+  std::vector<double> v(settings.size());
+  if (me == 0 && !v.empty()) utils::sfread(FLERR, v.data(), sizeof(double), v.size(), fp, nullptr, error);
+  MPI_Bcast(v.data(), (int) v.size(), MPI_DOUBLE, 0, world);
+  unpack_settings(v.data());
+  const auto coeffs = coeff_names();
+  read_names(fp, coeffs, "coefficients");
+  ncoeff_read = (int) coeffs.size();
+}
+
+/* a list of names in the file: it must be the style's own (the same version writes the
+   same; a difference is a file edited or a style changed without its version) */
+
+void PairSaltdem::read_names(FILE *fp, const std::vector<std::string> &want, const char *what)
+{
+  const int me = comm->me;
+  int n = 0;
+  if (me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&n, 1, MPI_INT, 0, world);
+  if (n < 0 || n > 1000)
+    error->all(FLERR, "Pair style {}: the restart file's list of {} is damaged ({} names)", name,
+               what, n);
+  std::vector<std::string> got;
+  for (int k = 0; k < n; k++) {
+    int len = 0;
+    if (me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);
+    MPI_Bcast(&len, 1, MPI_INT, 0, world);
+    if (len < 0 || len > 1000)
+      error->all(FLERR, "Pair style {}: the restart file's list of {} is damaged", name, what);
+    std::string s(len, ' ');
+    if (me == 0 && len > 0) utils::sfread(FLERR, &s[0], 1, len, fp, nullptr, error);
+    MPI_Bcast(&s[0], len, MPI_CHAR, 0, world);
+    got.push_back(s);
+  }
+  if (got != want)
+    error->all(FLERR, "Pair style {}: the restart file's {} are ({}), this version of the style "
+               "has ({}); start again from a data file (write_data) with this version", name,
+               what, utils::join_words(got, " "), utils::join_words(want, " "));
 }
 
 /* history of (i,j) seen from j: antisymmetric by default, but the rolling

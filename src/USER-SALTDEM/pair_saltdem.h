@@ -40,6 +40,8 @@ class PairSaltdem : public Pair {
   void setup() override;
   void write_restart(FILE *) override;
   void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
   void transfer_history(double *, double *, int, int) override;
   double memory_usage() override;
   virtual void pre_loop() {}    // per-step work before the pair loop (all threads joined)
@@ -155,7 +157,7 @@ class PairSaltdem : public Pair {
 
   virtual void allocate();
   virtual void allocate_params(int n) = 0;
-  virtual void *pair_params(int i, int j) = 0;    // for restart (plain-old-data)
+  virtual void *pair_params(int i, int j) = 0;    // (plain-old-data: copied to j,i)
   virtual size_t params_size() const = 0;
   virtual void mix(int i, int j) = 0;             // fill params[i][j] from i,i and j,j
   // the derived members of params[i][j] (i <= j) from the coefficients given (init_one)
@@ -190,13 +192,24 @@ class PairSaltdem : public Pair {
   // inertial mass per disc (sphere) volume of its integrated atoms
   void min_inertial_mass(double *mmin, double *mvmin);
   double inertia_scale(int i);
-  // the first value of a style's restart settings: the layout of the coefficients and of the
-  // history changes between releases, and a file of another layout must stop the run rather
-  // than be misread (negative: the files before the mark began with a positive setting; the
-  // date of the layout, so that the mark does not look like an ordinary value)
-  static constexpr double RESTART_FORMAT = -20261207.0;
-  void write_restart_format(FILE *fp);
-  void read_restart_format(FILE *fp);
+  // Self-describing restart.  A style's settings begin with RESTART_MARK (negative: the files
+  // before the mark began with a positive setting; the files of 2026-11-23 and 2026-12-07 with
+  // other marks: their raw coefficient structs are not read), then its own layout version
+  // (restart_version(), counted up when its fields change), its settings by name and value,
+  // and the names of its coefficients; then (not under pair hybrid, which writes settings
+  // only) the coefficients of every type pair set, field by field.  Derived values are not
+  // written: init_one() computes them again.  A file of another mark, version or field list
+  // stops read_restart with a message naming both.
+  static constexpr double RESTART_MARK = -20261214.0;    // SaltDEM::RESTART_MARK (saltdem_check.h)
+  virtual int restart_version() const = 0;
+  virtual std::vector<std::string> setting_names() const = 0;
+  virtual void pack_settings(double *) const = 0;      // in the order of setting_names()
+  virtual void unpack_settings(const double *) = 0;
+  virtual std::vector<std::string> coeff_names() const = 0;
+  virtual void pack_coeffs(int i, int j, double *) const = 0;    // coeff_names() of I,J
+  virtual void unpack_coeffs(int i, int j, const double *) = 0;
+  int ncoeff_read;    // the number of coefficients per type pair of the file being read
+  void read_names(FILE *fp, const std::vector<std::string> &want, const char *what);
   void check_types(int narg, char **arg, int nmin, const char *usage, int &ilo, int &ihi,
                    int &jlo, int &jhi);
 

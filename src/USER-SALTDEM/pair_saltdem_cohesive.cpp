@@ -211,17 +211,34 @@ void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, double &bes
 
 /* ---------------------------------------------------------------------- */
 
-void PairSaltdemCohesive::write_restart_settings(FILE *fp)
+/* the restart fields of a type pair: the coefficients given (cn, ct are derived) */
+
+std::vector<std::string> PairSaltdemCohesive::coeff_names() const
 {
-  write_restart_format(fp);
-  fwrite(&dtfactor, sizeof(double), 1, fp);
+  return {"kn", "kt", "mu", "cohesion", "tensile", "range", "zeta_n", "zeta_t", "kr", "mu_r"};
 }
 
-void PairSaltdemCohesive::read_restart_settings(FILE *fp)
+void PairSaltdemCohesive::pack_coeffs(int i, int j, double *v) const
 {
-  read_restart_format(fp);
-  if (comm->me == 0) utils::sfread(FLERR, &dtfactor, sizeof(double), 1, fp, nullptr, error);
-  MPI_Bcast(&dtfactor, 1, MPI_DOUBLE, 0, world);
+  const auto &p = params[i][j];
+  const double f[] = {p.kn, p.kt, p.mu, p.coh, p.tens, p.range, p.zeta_n, p.zeta_t, p.kr, p.mur};
+  for (int k = 0; k < 10; k++) v[k] = f[k];
+}
+
+void PairSaltdemCohesive::unpack_coeffs(int i, int j, const double *v)
+{
+  SaltDEM::CohesiveParams p{};
+  p.kn = v[0];
+  p.kt = v[1];
+  p.mu = v[2];
+  p.coh = v[3];
+  p.tens = v[4];
+  p.range = v[5];
+  p.zeta_n = v[6];
+  p.zeta_t = v[7];
+  p.kr = v[8];
+  p.mur = v[9];
+  params[i][j] = p;
 }
 
 /* kn etc. for fixes and computes: per type pair arrays are not exposed;

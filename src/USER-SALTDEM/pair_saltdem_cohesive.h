@@ -23,8 +23,6 @@ class PairSaltdemCohesive : public PairSaltdem {
   void settings(int, char **) override;
   void coeff(int, char **) override;
   void init_style() override;
-  void write_restart_settings(FILE *) override;
-  void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
 
   // the force law, inlined into the shared pair loop (PairSaltdem::loop); no per-atom sum
@@ -56,6 +54,13 @@ class PairSaltdemCohesive : public PairSaltdem {
   void derive(int, int) override;
   double range(int i, int j) const override { return params[i][j].tens > 0.0 ? params[i][j].range : 0.0; }
   void pair_limit(int, int, double, double, double &, std::string &) override;
+  int restart_version() const override { return 1; }
+  std::vector<std::string> setting_names() const override { return {"dtfactor"}; }
+  void pack_settings(double *v) const override { v[0] = dtfactor; }
+  void unpack_settings(const double *v) override { dtfactor = v[0]; }
+  std::vector<std::string> coeff_names() const override;
+  void pack_coeffs(int, int, double *) const override;
+  void unpack_coeffs(int, int, const double *) override;
 };
 
 }    // namespace LAMMPS_NS

@@ -485,46 +485,53 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
 
 /* ---------------------------------------------------------------------- */
 
-/* the viscosity is not a member of the coefficient struct: it follows them */
+/* the restart fields: the settings, and per type pair the law, the viscosity and the
+   coefficients given (the dashpots cw, ih2, kfac, gn, gt are derived) */
 
-void PairSaltdemViscous::write_restart(FILE *fp)
+std::vector<std::string> PairSaltdemViscous::setting_names() const
 {
-  PairSaltdem::write_restart(fp);
-  for (int i = 1; i <= atom->ntypes; i++)
-    for (int j = i; j <= atom->ntypes; j++)
-      if (setflag[i][j]) fwrite(&eta[i][j], sizeof(double), 1, fp);
+  return {"calibration", "correction", "dtfactor", "viscfactor"};
 }
 
-void PairSaltdemViscous::read_restart(FILE *fp)
+void PairSaltdemViscous::pack_settings(double *v) const
 {
-  PairSaltdem::read_restart(fp);
-  for (int i = 1; i <= atom->ntypes; i++)
-    for (int j = i; j <= atom->ntypes; j++)
-      if (setflag[i][j]) {
-        if (comm->me == 0) utils::sfread(FLERR, &eta[i][j], sizeof(double), 1, fp, nullptr, error);
-        MPI_Bcast(&eta[i][j], 1, MPI_DOUBLE, 0, world);
-      }
+  v[0] = calibration;
+  v[1] = correction;
+  v[2] = dtfactor;
+  v[3] = viscfactor;
 }
 
-void PairSaltdemViscous::write_restart_settings(FILE *fp)
+void PairSaltdemViscous::unpack_settings(const double *v)
 {
-  write_restart_format(fp);
-  fwrite(&calibration, sizeof(double), 1, fp);
-  fwrite(&correction, sizeof(double), 1, fp);
-  fwrite(&dtfactor, sizeof(double), 1, fp);
-  fwrite(&viscfactor, sizeof(double), 1, fp);
+  calibration = v[0];
+  correction = v[1];
+  dtfactor = v[2];
+  viscfactor = v[3];
 }
 
-void PairSaltdemViscous::read_restart_settings(FILE *fp)
+std::vector<std::string> PairSaltdemViscous::coeff_names() const
 {
-  read_restart_format(fp);
-  double buf[4];
-  if (comm->me == 0) utils::sfread(FLERR, buf, sizeof(double), 4, fp, nullptr, error);
-  MPI_Bcast(buf, 4, MPI_DOUBLE, 0, world);
-  calibration = buf[0];
-  correction = buf[1];
-  dtfactor = buf[2];
-  viscfactor = buf[3];
+  return {"law", "eta", "kn", "h", "K", "gap", "tangential"};
+}
+
+void PairSaltdemViscous::pack_coeffs(int i, int j, double *v) const
+{
+  const auto &p = params[i][j];
+  const double f[] = {(double) p.mode, eta[i][j], p.kn, p.h, p.K, p.gap, p.ratio};
+  for (int k = 0; k < 7; k++) v[k] = f[k];
+}
+
+void PairSaltdemViscous::unpack_coeffs(int i, int j, const double *v)
+{
+  SaltDEM::ViscousParams p{};
+  p.mode = (v[0] == SaltDEM::VISCOUS_CONTACT) ? SaltDEM::VISCOUS_CONTACT : SaltDEM::VISCOUS_FLUID;
+  eta[i][j] = v[1];
+  p.kn = v[2];
+  p.h = v[3];
+  p.K = v[4];
+  p.gap = v[5];
+  p.ratio = v[6];
+  params[i][j] = p;
 }
 
 /* the inertia factor S of the viscous discs: the largest of the integrated atoms of the types

@@ -25,10 +25,6 @@ class PairSaltdemViscous : public PairSaltdem {
   void settings(int, char **) override;
   void coeff(int, char **) override;
   double init_one(int, int) override;
-  void write_restart(FILE *) override;
-  void read_restart(FILE *) override;
-  void write_restart_settings(FILE *) override;
-  void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
   void pre_loop() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
@@ -121,6 +117,13 @@ class PairSaltdemViscous : public PairSaltdem {
   }
   void init_style() override;
   void pair_limit(int, int, double, double, double &, std::string &) override;
+  int restart_version() const override { return 1; }
+  std::vector<std::string> setting_names() const override;
+  void pack_settings(double *) const override;
+  void unpack_settings(const double *) override;
+  std::vector<std::string> coeff_names() const override;
+  void pack_coeffs(int, int, double *) const override;
+  void unpack_coeffs(int, int, const double *) override;
   double find_salt_inertia();
   // the time step check: the viscosities and calibration it saw (a change during the run,
   // e.g. by fix adapt, is checked again), and the inertial masses per disc volume it used

@@ -24,6 +24,9 @@
 namespace SaltDEM {
 
 constexpr double MAX_VALUE = 1e100;    // largest magnitude of a coefficient
+// the first value of a SaltDEM style's restart data, followed by the style's layout version
+// (pair styles: PairSaltdem::RESTART_MARK, the same value)
+constexpr double RESTART_MARK = -20261214.0;
 constexpr double MIN_VALUE = 1e-100;   // smallest magnitude of a non-zero coefficient
 
 inline bool in_bounds(double v)

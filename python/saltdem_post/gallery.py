@@ -97,7 +97,7 @@ def read_notes(path: Optional[str]) -> Dict[str, List[str]]:
     return notes
 
 
-def shrink_png(src: str, dst: str, width: int = 900, colours: int = 96) -> str:
+def shrink_png(src: str, dst: str, width: int = 720, colours: int = 96) -> str:
     """A docs-sized copy of a figure (about a tenth of the size)."""
     from PIL import Image
     im = Image.open(src).convert("RGB")
@@ -143,6 +143,8 @@ def gallery_markdown(runs: Sequence[GalleryRun], notes: Dict[str, List[str]], im
             out.append("")
         if r.outcomes_md:
             body = r.outcomes_md.split("\n", 1)[1] if r.outcomes_md.startswith("## ") else r.outcomes_md
+            # the table names the dumps by the path they were read from: name them by the run
+            body = body.replace(os.path.abspath(r.path) + os.sep, r.name + "/")
             out += ["<details><summary>Outcomes table</summary>", "", body.replace("### ", "#### ").strip(),
                     "", "</details>", ""]
     return "\n".join(out).rstrip() + "\n"

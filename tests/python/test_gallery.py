@@ -35,7 +35,8 @@ def make_run(tmp_path, name, ux=(+10.0, +20.0, +30.0)):
              "cover_motion": {k: {"ux_m": v} for k, v in zip(("left", "middle", "right"), ux)},
              "end_walls": {"left": {"gap": True}, "right": {"gap": False}}}
     (d / "outcomes" / "outcomes.json").write_text(json.dumps({"frames": [frame]}))
-    (d / "outcomes" / "outcomes.md").write_text("## outcomes\n\n### 1000 m\n\n| a | b |\n|---|---|\n| 1 | 2 |\n")
+    (d / "outcomes" / "outcomes.md").write_text(f"## outcomes\n\nDumps: `{d.resolve()}/dump.expt1.*.txt`\n\n"
+                                                "### 1000 m\n\n| a | b |\n|---|---|\n| 1 | 2 |\n")
     (d / "wall.txt").write_text("754\n")
     (d / "cmd.txt").write_text(f"ONLY={name} examples/run-series.sh gallery quick\n")
     return d
@@ -64,6 +65,7 @@ def test_run_directory_becomes_a_section(tmp_path):
     assert f"| {said[0]} | first \\| reading |" in text
     assert "- a remark beyond the paper" in text
     assert "#### 1000 m" in text and "![expt1_contact](img/expt1_contact.png)" in text
+    assert "Dumps: `expt1_contact/dump.expt1.*.txt`" in text and str(tmp_path) not in text
     assert (page / "img" / "expt1_contact.png").stat().st_size > 0
 
 

@@ -316,7 +316,8 @@ def cmd_figure(args) -> dict:
                        "previous_frame": prev, "previous_displacement_m": disp[prev] if prev is not None else None,
                        "strain": field.summary() if field is not None else None})
     xlim, ylim = ([1000.0 * v for v in lim] if lim else None for lim in (args.xlim, args.ylim))   # km -> m
-    info = paper_figure(rows, _out(args, args.name), materials, args.strain_max, xlim, ylim, args.dpi, args.title)
+    info = paper_figure(rows, _out(args, args.name), materials, args.strain_max, xlim, ylim, args.dpi, args.title,
+                        growth_offset=args.growth_offset)
     result = {"figure": info, "displacement_source": source, "increment_m": args.increment, "stages": report}
     write_json(_out(args, os.path.splitext(args.name)[0] + ".json"), result)
     _say(f"{info['path']}: {len(rows)} stage(s) ({source}); strain colour scale 0-{info['strain_max']:g}; "
@@ -493,6 +494,9 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--dpi", type=int, default=150)
     s.add_argument("--name", default="paper_figure.png", help="output file name")
     s.add_argument("--title")
+    s.add_argument("--growth-offset", type=int, default=1000,
+                   help="growth strata: cover discs with marker OFFSET + epoch (fix saltdem/sediment, "
+                        "examples/scene/sediment.in) are coloured by epoch; 0: none (default %(default)s)")
 
     s = add("outcomes", cmd_outcomes, [common, nb, fx, stages],
             "the paper's statements per stage: salt thinning and welds, interface relief, cover faults "

@@ -26,6 +26,11 @@ from .strain import StrainField               # noqa: E402
 COVER_COLOURS = ("#f2c14e", "#4d7ea8")
 SALT_COLOURS = ("#f7b2c8", "#b5527f")
 WALL_COLOUR = "#8c8c8c"
+# Growth strata: discs deposited by fix saltdem/sediment carry marker GROWTH_OFFSET + epoch
+# (examples/scene/sediment.in: 1000 + k for the k-th interval), coloured by epoch from light to
+# dark green, alternate epochs lighter so neighbouring strata read apart.
+GROWTH_OFFSET = 1000
+GROWTH_CMAP = "Greens"
 UNMAPPED_COLOUR = "#d9d9d9"
 STRAIN_CMAP = "magma_r"
 PANEL_WIDTH = 6.0                             # inches per model panel
@@ -56,8 +61,33 @@ def draw_discs(ax, xy: np.ndarray, r: np.ndarray, facecolors=None, values=None,
     return coll
 
 
-def marker_colours(types: np.ndarray, markers: np.ndarray, materials: MaterialMap) -> np.ndarray:
-    """RGBA per disc: cover layers and salt bands in alternating colours."""
+def growth_epochs(types: np.ndarray, markers: np.ndarray, materials: MaterialMap,
+                  offset: Optional[int] = GROWTH_OFFSET) -> np.ndarray:
+    """Deposition epoch per disc: k for a cover disc with marker offset + k (k >= 1), else 0
+    (the cover and salt of the initial model, walls; everything when offset is None or 0)."""
+    markers = np.asarray(markers)
+    if not offset:
+        return np.zeros(len(markers), dtype=np.int64)
+    grown = materials.mask(types, "cover") & (markers > offset)
+    return np.where(grown, markers - offset, 0).astype(np.int64)
+
+
+def growth_colours(epochs: np.ndarray, nepochs: int) -> np.ndarray:
+    """RGBA of growth strata of the given epochs (1..nepochs): light to dark green, alternate
+    epochs lighter."""
+    epochs = np.asarray(epochs)
+    t = (epochs - 1) / max(nepochs - 1, 1)
+    rgba = plt.get_cmap(GROWTH_CMAP)(0.35 + 0.6 * np.clip(t, 0.0, 1.0))
+    even = (epochs % 2 == 0)
+    rgba[even, :3] += (1.0 - rgba[even, :3]) * 0.3
+    return rgba
+
+
+def marker_colours(types: np.ndarray, markers: np.ndarray, materials: MaterialMap,
+                   growth_offset: Optional[int] = GROWTH_OFFSET, nepochs: Optional[int] = None) -> np.ndarray:
+    """RGBA per disc: cover layers and salt bands in alternating colours, growth strata (cover
+    discs with marker growth_offset + epoch) by epoch on a scale of nepochs (default: the
+    largest epoch present)."""
     rgba = np.tile(to_rgba_array(UNMAPPED_COLOUR), (len(types), 1))
     odd = (np.asarray(markers) % 2).astype(bool)
     for material, colours in (("cover", COVER_COLOURS), ("salt", SALT_COLOURS)):
@@ -65,13 +95,22 @@ def marker_colours(types: np.ndarray, markers: np.ndarray, materials: MaterialMa
         rgba[m & ~odd] = to_rgba_array(colours[0])
         rgba[m & odd] = to_rgba_array(colours[1])
     rgba[materials.mask(types, "wall")] = to_rgba_array(WALL_COLOUR)
+    epochs = growth_epochs(types, markers, materials, growth_offset)
+    grown = epochs > 0
+    if grown.any():
+        rgba[grown] = growth_colours(epochs[grown], nepochs or int(epochs.max()))
     return rgba
 
 
-def marker_legend() -> List[Patch]:
-    return [Patch(color=COVER_COLOURS[0], label="cover layers"), Patch(color=COVER_COLOURS[1]),
-            Patch(color=SALT_COLOURS[0], label="salt bands"), Patch(color=SALT_COLOURS[1]),
-            Patch(color=WALL_COLOUR, label="wall / basement")]
+def marker_legend(nepochs: int = 0) -> List[Patch]:
+    patches = [Patch(color=COVER_COLOURS[0], label="cover layers"), Patch(color=COVER_COLOURS[1]),
+               Patch(color=SALT_COLOURS[0], label="salt bands"), Patch(color=SALT_COLOURS[1]),
+               Patch(color=WALL_COLOUR, label="wall / basement")]
+    if nepochs > 0:
+        first, last = growth_colours(np.array([1, nepochs]), nepochs)
+        label = "growth strata, epoch 1" + (f" (light) to {nepochs} (dark)" if nepochs > 1 else "")
+        patches += [Patch(color=first, label=label)] + ([Patch(color=last)] if nepochs > 1 else [])
+    return patches
 
 
 def extent(frames: Sequence[Frame], pad: float = 0.0) -> Tuple[Tuple[float, float], Tuple[float, float]]:
@@ -120,11 +159,16 @@ def _figsize(nrows: int, ncols: int, xlim, ylim, panel_width: float, footer: flo
 
 def paper_figure(rows: Sequence[PanelRow], path: str, materials: Optional[MaterialMap] = None,
                  strain_max: Optional[float] = None, xlim=None, ylim=None, dpi: int = 150,
-                 title: Optional[str] = None, panel_width: float = PANEL_WIDTH) -> dict:
+                 title: Optional[str] = None, panel_width: float = PANEL_WIDTH,
+                 growth_offset: Optional[int] = GROWTH_OFFSET) -> dict:
     """Multi-panel figure like the paper's Figs. 3-7: one row per stage, the
     marker geometry on the left and incremental maximum shear strain on the
-    right, with shared limits and one colour scale for every strain panel."""
+    right, with shared limits and one colour scale for every strain panel.
+    Growth strata (fix saltdem/sediment) are coloured by epoch on one scale
+    for all rows."""
     materials = materials or MaterialMap()
+    nepochs = max([int(growth_epochs(r.frame["type"], r.markers, materials, growth_offset).max(initial=0))
+                   for r in rows] or [0])
     (x0, x1), (y0, y1) = extent([r.frame for r in rows], pad=0.0)
     xlim, ylim = xlim or (x0, x1), ylim or (y0, y1)
     with_strain = any(r.strain is not None for r in rows)
@@ -144,7 +188,8 @@ def paper_figure(rows: Sequence[PanelRow], path: str, materials: Optional[Materi
         last = k == len(rows) - 1
         ax = axes[k, 0]
         fr = row.frame
-        draw_discs(ax, fr.xy, fr.radius, facecolors=marker_colours(fr["type"], row.markers, materials))
+        draw_discs(ax, fr.xy, fr.radius,
+                   facecolors=marker_colours(fr["type"], row.markers, materials, growth_offset, nepochs))
         ax.set_title(row.label, loc="left", fontsize=10)
         if with_strain:
             ax = axes[k, 1]
@@ -164,7 +209,8 @@ def paper_figure(rows: Sequence[PanelRow], path: str, materials: Optional[Materi
             km_axes(a, xlabel=last, ylabel=c == 0)
     legend_ax = fig.add_subplot(grid[-1, 0])
     legend_ax.axis("off")
-    legend_ax.legend(handles=marker_legend(), loc="center", ncol=5, fontsize=8, frameon=False, handlelength=1.2)
+    legend_ax.legend(handles=marker_legend(nepochs), loc="center", ncol=5 if not nepochs else 4, fontsize=8,
+                     frameon=False, handlelength=1.2)
     if mappable is not None:
         holder = fig.add_subplot(grid[-1, 1])
         holder.axis("off")

@@ -932,16 +932,20 @@ def memory_run(scene, data, workdir, body, nloop, nrun, rate=10.0, skin=0.5, tim
 
 
 def growth(out, samples, nloop, warm=2):
-    """Heap in use (MB, from `info memory`) and peak VmRSS (MB) of the loops after `warm`
-    loops: increase from the first of them to the last."""
+    """Heap in use (MB, from `info memory` after every loop) and peak VmRSS (MB, the watcher's
+    samples) of the loops after `warm` loops: increase from the first of them to the last.  The
+    peak resident size at loop K is the largest sample taken up to the end of loop K, so a loop
+    shorter than the 50 ms sampling period (as fast as these are) still has one."""
     heap = heap_mb(out)
     assert len(heap) == nloop
-    rss = {}
-    for t, kb, phase in samples:
-        rss.setdefault(phase, []).append(kb / 1024.0)
-    first, last = warm, nloop - 1
-    assert first in rss and last in rss, sorted(rss)
-    return heap[last] - heap[warm - 1], max(rss[last]) - max(rss[first])
+    assert samples, "the watcher never saw the process"
+
+    def peak_upto(k):
+        seen = [kb / 1024.0 for _, kb, phase in samples if phase <= k]
+        assert seen, f"no VmRSS sample up to loop {k}"
+        return max(seen)
+
+    return heap[nloop - 1] - heap[warm - 1], peak_upto(nloop - 1) - peak_upto(warm)
 
 
 HEAP_TOL = 0.25      # MB the heap in use may grow over the measured loops

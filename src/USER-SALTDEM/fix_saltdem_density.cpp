@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    Internal fix SALTDEM_DENSITY: the continuity density of the fluid
    particles of pair style saltdem/viscous (see the header).  The pair style
@@ -13,6 +27,7 @@
 
 #include "pair_saltdem_viscous.h"
 #include "saltdem_check.h"
+#include "saltdem_contact.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -103,8 +118,10 @@ void FixSaltdemDensity::measure()
   if (restored && comm->me == 0)
     for (int t = 1; t <= nt; t++)
       if (fluid[t] && !stale(t))
-        utils::logmesg(lmp, "pair {}: reference density of fluid type {} = {:.15g} (from the "
-                       "restart file)\n", pair->name_of(), t, rho0[t]);
+        utils::logmesg(lmp,
+                       "pair {}: reference density of fluid type {} = {:.15g} (from the "
+                       "restart file)\n",
+                       pair->name_of(), t, rho0[t]);
   restored = 0;
 
   if (need) {
@@ -254,8 +271,10 @@ void FixSaltdemDensity::restart(char *buf)
                style, list[0], list[1], SaltDEM::RESTART_MARK, RESTART_VERSION);
   const int nt = static_cast<int>(list[2]);
   if (nt != atom->ntypes)
-    error->all(FLERR, "Fix {}: the restart file holds reference densities of {} atom types, the "
-               "system has {}", style, nt, atom->ntypes);
+    error->all(FLERR,
+               "Fix {}: the restart file holds reference densities of {} atom types, the "
+               "system has {}",
+               style, nt, atom->ntypes);
   rho0.assign(nt + 1, 0.0);
   h0.assign(nt + 1, 0.0);
   for (int t = 1; t <= nt; t++) {

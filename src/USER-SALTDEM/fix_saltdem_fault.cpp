@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    fix saltdem/fault: the hanging wall of a basement normal fault.  The
    group (the hanging-wall wall discs) moves rigidly down-dip at a given
@@ -20,7 +34,8 @@ FixSaltdemFault::FixSaltdemFault(LAMMPS *lmp, int narg, char **arg) :
 {
   has_toward = 1;
   usage = fmt::format("fix ID group {} dip D rate V target T [toward right|left] "
-          "[at_target stop|end]", style);
+                      "[at_target stop|end]",
+                      style);
   parse(narg, arg);
   if (dip == 0.0) error->all(FLERR, "Fix {}: dip is required; usage: {}", style, usage);
 

@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    fix saltdem/keystone: a keystone graben between two opposing basement
    normal faults of the same dip.  The left block is static (integrated by
@@ -25,7 +39,8 @@ FixSaltdemKeystone::FixSaltdemKeystone(LAMMPS *lmp, int narg, char **arg) :
     FixSaltdemMotion(lmp, narg, arg), dip(0.0), ikeystone(-1)
 {
   usage = fmt::format("fix ID group {} dip D keystone GROUP rate V target T "
-          "[at_target stop|end]", style);
+                      "[at_target stop|end]",
+                      style);
   parse(narg, arg);
   if (dip == 0.0) error->all(FLERR, "Fix {}: dip is required; usage: {}", style, usage);
   if (ikeystone < 0)
@@ -63,12 +78,15 @@ void FixSaltdemKeystone::init()
   bigint all[2], mine[2] = {outside, right};
   MPI_Allreduce(mine, all, 2, MPI_LMP_BIGINT, MPI_SUM, world);
   if (all[0] > 0)
-    error->all(FLERR, "Fix {} {}: {} atoms of keystone group {} are not in the fix group {}; the "
-               "fix group holds the keystone and the right block", style, id, all[0],
-               group->names[ikeystone], group->names[igroup]);
+    error->all(FLERR,
+               "Fix {} {}: {} atoms of keystone group {} are not in the fix group {}; the "
+               "fix group holds the keystone and the right block",
+               style, id, all[0], group->names[ikeystone], group->names[igroup]);
   if (all[1] == 0)
-    error->all(FLERR, "Fix {} {}: the right block (fix group {} minus keystone group {}) has no "
-               "atoms", style, id, group->names[igroup], group->names[ikeystone]);
+    error->all(FLERR,
+               "Fix {} {}: the right block (fix group {} minus keystone group {}) has no "
+               "atoms",
+               style, id, group->names[igroup], group->names[ikeystone]);
 }
 
 /* 1 left-fault displacement, 2 right-fault displacement (equal by construction),

@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    Prescribed rigid motion of blocks of wall discs (basement blocks, end
    walls), shared by fix saltdem/fault, saltdem/keystone and saltdem/tiltwall.
@@ -53,13 +67,19 @@ void FixSaltdemMotion::parse(int narg, char **arg)
     else if (kw == "target")
       target = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: target", style), lmp);
     else if (kw == "at_target") {
-      if (val == "stop") end_run = 0;
-      else if (val == "end") end_run = 1;
-      else error->all(FLERR, "Fix {}: at_target '{}' must be stop or end", style, val);
+      if (val == "stop")
+        end_run = 0;
+      else if (val == "end")
+        end_run = 1;
+      else
+        error->all(FLERR, "Fix {}: at_target '{}' must be stop or end", style, val);
     } else if (kw == "toward" && has_toward) {
-      if (val == "right") sense = 1;
-      else if (val == "left") sense = -1;
-      else error->all(FLERR, "Fix {}: toward '{}' must be right or left", style, val);
+      if (val == "right")
+        sense = 1;
+      else if (val == "left")
+        sense = -1;
+      else
+        error->all(FLERR, "Fix {}: toward '{}' must be right or left", style, val);
     } else if (!parse_keyword(kw, val))
       error->all(FLERR, "Fix {}: unknown keyword '{}'; usage: {}", style, kw, usage);
   }
@@ -95,7 +115,8 @@ void FixSaltdemMotion::init()
     error->all(FLERR, "Fix {} {}: group {} has no atoms", style, id, group->names[igroup]);
   for (const auto &b : blocks)
     if (b.igroup >= 0 && group->count(b.igroup) == 0)
-      error->all(FLERR, "Fix {} {}: block group {} has no atoms", style, id, group->names[b.igroup]);
+      error->all(FLERR, "Fix {} {}: block group {} has no atoms", style, id,
+                 group->names[b.igroup]);
 
   // the step of the drive, here since the time step may change after the fix is defined
   const double step = rate * update->dt;
@@ -103,7 +124,8 @@ void FixSaltdemMotion::init()
     error->all(FLERR,
                "Fix {} {}: one time step moves the blocks by rate x dt = {} x {} = {} m, beyond "
                "the target {} m: the whole motion would happen in a single jump. Lower the rate "
-               "or the time step", style, id, rate, update->dt, step, target);
+               "or the time step",
+               style, id, rate, update->dt, step, target);
 
   // the walls jump through discs when a step moves a block by a good part of the smallest
   // radius of the scene (the fastest block: the right block of a keystone moves at 2 cos D)
@@ -215,12 +237,16 @@ void FixSaltdemMotion::restart(char *buf)
   double list[3];
   memcpy(list, buf, sizeof(double));
   if (list[0] != SaltDEM::RESTART_MARK)
-    error->all(FLERR, "Fix {} {}: the restart file was written by another SaltDEM version (its "
+    error->all(FLERR,
+               "Fix {} {}: the restart file was written by another SaltDEM version (its "
                "data of this fix are not marked); continue with the version that wrote it, or "
-               "define the fix under another ID to start its motion from 0", style, id);
+               "define the fix under another ID to start its motion from 0",
+               style, id);
   memcpy(list, buf, sizeof(list));
   if (list[1] != RESTART_VERSION)
-    error->all(FLERR, "Fix {} {}: the restart file holds this fix's data in layout version {}, "
-               "this version reads layout {}", style, id, list[1], RESTART_VERSION);
+    error->all(FLERR,
+               "Fix {} {}: the restart file holds this fix's data in layout version {}, "
+               "this version reads layout {}",
+               style, id, list[1], RESTART_VERSION);
   disp = list[2];
 }

@@ -1,5 +1,19 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    FixSaltdemMotion: the shared machinery of the prescribed-motion fixes
    (saltdem/fault, saltdem/keystone, saltdem/tiltwall).  Not a style.
@@ -9,9 +23,6 @@
 #define LMP_FIX_SALTDEM_MOTION_H
 
 #include "fix.h"
-
-#include <string>
-#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -37,14 +48,14 @@ class FixSaltdemMotion : public Fix {
   };
   std::vector<Block> blocks;
 
-  double rate;      // drive rate (m/s): the displacement the fix reports grows at this rate
-  double target;    // drive displacement at which the blocks stop (m)
-  int end_run;      // 1: end the run when the target is reached
-  int ended;        // 1: this fix ended the current run (post_run lets the next one go)
-  double disp;      // drive displacement so far (m), kept in restart files
-  int sense;        // toward right|left: +1 the motion goes toward +x, -1 toward -x
-  int has_toward;   // 1: the fix takes the keyword 'toward right|left' (set before parse())
-  int warned;       // the warning that a step moves a block by much of a disc radius was given
+  double rate;       // drive rate (m/s): the displacement the fix reports grows at this rate
+  double target;     // drive displacement at which the blocks stop (m)
+  int end_run;       // 1: end the run when the target is reached
+  int ended;         // 1: this fix ended the current run (post_run lets the next one go)
+  double disp;       // drive displacement so far (m), kept in restart files
+  int sense;         // toward right|left: +1 the motion goes toward +x, -1 toward -x
+  int has_toward;    // 1: the fix takes the keyword 'toward right|left' (set before parse())
+  int warned;        // the warning that a step moves a block by much of a disc radius was given
   // a step that moves a block by more than this fraction of the smallest disc radius warns
   static constexpr double JUMP_FRACTION = 0.1;
   static constexpr double RESTART_VERSION = 1.0;    // layout of the restart data

@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    fix saltdem/nve: velocity-Verlet for discs (2D, I = m r^2/2) and spheres
    (3D, I = 2 m r^2/5) with an optional inertia factor S.  The integrator
@@ -31,7 +45,7 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixSaltdemNVE::FixSaltdemNVE(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), inertia(1.0), check_every(100), nthreads(1)
+    Fix(lmp, narg, arg), inertia(1.0), check_every(100)
 {
   time_integrate = 1;
   int iarg = 3;
@@ -46,7 +60,8 @@ FixSaltdemNVE::FixSaltdemNVE(LAMMPS *lmp, int narg, char **arg) :
       check_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
       if (check_every < 0) error->all(FLERR, "Fix {}: check {} must be >= 0", style, check_every);
     } else
-      error->all(FLERR, "Fix {}: unknown keyword '{}' (expected: inertia, check)", style, arg[iarg]);
+      error->all(FLERR, "Fix {}: unknown keyword '{}' (expected: inertia, check)", style,
+                 arg[iarg]);
     iarg += 2;
   }
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
@@ -65,7 +80,8 @@ void FixSaltdemNVE::init()
   if (group->count(igroup) == 0)
     error->all(FLERR,
                "Fix {} {}: group {} has no atoms, nothing would be integrated; check "
-               "the group definition (or unfix {})", style, id, group->names[igroup], id);
+               "the group definition (or unfix {})",
+               style, id, group->names[igroup], id);
 
   // a disc without radius or mass has no finite inertia: name it now, not as a NaN later
   bigint nbad = 0;
@@ -98,9 +114,10 @@ void FixSaltdemNVE::reset_dt()
 /* velocity-Verlet: half-kick of v and omega (forces and torques over S m
    and S I), then (initial) the drift of x.  DIM 2: only x, y and the spin
    about z move, so the z parts stay at the zero LAMMPS creates 2D atoms with
-   (what fix enforce2d would enforce for these atoms, at no extra pass). */
+   (what fix enforce2d would enforce for these atoms, at no extra pass).
+   Every atom on its own: a range of them gives the numbers of the whole loop. */
 
-template <int DIM, bool DRIFT> void FixSaltdemNVE::integrate()
+template <int DIM, bool DRIFT> void FixSaltdemNVE::integrate(int ifrom, int ito)
 {
   double **x = atom->x, **v = atom->v, **f = atom->f;
   double **omega = atom->omega, **torque = atom->torque;
@@ -108,12 +125,7 @@ template <int DIM, bool DRIFT> void FixSaltdemNVE::integrate()
   const int *mask = atom->mask;
   const double dtfs = dtf / inertia;
   const double dtir = dtfs / inertia_factor;
-  const int nlocal = atom->nlocal;
-  // saltdem/nve/omp: the atoms are independent, so the threads give the serial numbers
-#if defined(_OPENMP)
-#pragma omp parallel for num_threads(nthreads) schedule(static) if (nthreads > 1)
-#endif
-  for (int i = 0; i < nlocal; i++) {
+  for (int i = ifrom; i < ito; i++) {
     if (!(mask[i] & groupbit)) continue;
     const double dtfm = dtfs / rmass[i];
     const double dtirotate = dtir / (rmass[i] * radius[i] * radius[i]);
@@ -128,20 +140,34 @@ template <int DIM, bool DRIFT> void FixSaltdemNVE::integrate()
   }
 }
 
+void FixSaltdemNVE::integrate_range(int ifrom, int ito, bool drift)
+{
+  if (domain->dimension == 2) {
+    if (drift)
+      integrate<2, true>(ifrom, ito);
+    else
+      integrate<2, false>(ifrom, ito);
+  } else {
+    if (drift)
+      integrate<3, true>(ifrom, ito);
+    else
+      integrate<3, false>(ifrom, ito);
+  }
+}
+
+void FixSaltdemNVE::integrate_all(bool drift)
+{
+  integrate_range(0, atom->nlocal, drift);
+}
+
 void FixSaltdemNVE::initial_integrate(int)
 {
-  if (domain->dimension == 2)
-    integrate<2, true>();
-  else
-    integrate<3, true>();
+  integrate_all(true);
 }
 
 void FixSaltdemNVE::final_integrate()
 {
-  if (domain->dimension == 2)
-    integrate<2, false>();
-  else
-    integrate<3, false>();
+  integrate_all(false);
   if (check_every && update->ntimestep % check_every == 0) check_finite();
 }
 

@@ -1,9 +1,19 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
 
-   fix saltdem/nve/omp: fix saltdem/nve with its integration loops split
-   between the OpenMP threads of the rank (-sf omp, package omp).  Every
-   atom is integrated on its own, so the result is that of the serial fix.
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -15,19 +25,16 @@ FixStyle(saltdem/nve/omp,FixSaltdemNVEOMP);
 #ifndef LMP_FIX_SALTDEM_NVE_OMP_H
 #define LMP_FIX_SALTDEM_NVE_OMP_H
 
-#include "comm.h"
 #include "fix_saltdem_nve.h"
 
 namespace LAMMPS_NS {
 
 class FixSaltdemNVEOMP : public FixSaltdemNVE {
  public:
-  FixSaltdemNVEOMP(class LAMMPS *lmp, int narg, char **arg) : FixSaltdemNVE(lmp, narg, arg) {}
-  void init() override
-  {
-    FixSaltdemNVE::init();
-    nthreads = comm->nthreads;
-  }
+  FixSaltdemNVEOMP(class LAMMPS *, int, char **);
+
+ protected:
+  void integrate_all(bool) override;
 };
 
 }    // namespace LAMMPS_NS

@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    fix saltdem/tiltwall: a model tilted by an angle A and extended by its
    end wall.  The run is set in the tilted frame: the base is the x axis and
@@ -31,20 +45,25 @@ FixSaltdemTiltwall::FixSaltdemTiltwall(LAMMPS *lmp, int narg, char **arg) :
 {
   has_toward = 1;
   usage = fmt::format("fix ID group {} tilt A rate V target T [toward right|left] "
-          "[gravity GROUP] [g G] [at_target stop|end]", style);
+                      "[gravity GROUP] [g G] [at_target stop|end]",
+                      style);
   parse(narg, arg);
   if (tilt == 0.0) error->all(FLERR, "Fix {}: tilt is required; usage: {}", style, usage);
   // the default g is the Earth's in m/s^2: SI only
   if (!g_given) {
     if (strcmp(update->unit_style, "si") != 0)
-      error->all(FLERR, "Fix {}: the default g = {} is in m/s^2 (units si); under units {} give "
-                 "'g G' in the deck's units (length/time^2)", style, DEFAULT_G, update->unit_style);
+      error->all(FLERR,
+                 "Fix {}: the default g = {} is in m/s^2 (units si); under units {} give "
+                 "'g G' in the deck's units (length/time^2)",
+                 style, DEFAULT_G, update->unit_style);
     g = DEFAULT_G;
   }
   if (g <= 0.0) error->all(FLERR, "Fix {}: g = {} must be > 0", style, g);
   if (igravity == igroup)
-    error->all(FLERR, "Fix {}: the gravity group must be the discs that move freely, not the "
-               "wall group {}", style, group->names[igroup]);
+    error->all(FLERR,
+               "Fix {}: the gravity group must be the discs that move freely, not the "
+               "wall group {}",
+               style, group->names[igroup]);
   blocks.push_back({-1, {double(sense), 0.0, 0.0}});
   size_vector = 3;
 }
@@ -64,8 +83,7 @@ int FixSaltdemTiltwall::parse_keyword(const std::string &kw, const std::string &
   else if (kw == "g") {
     g = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: g", style), lmp);
     g_given = 1;
-  }
-  else
+  } else
     return 0;
   return 1;
 }

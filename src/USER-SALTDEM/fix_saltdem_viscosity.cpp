@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    fix saltdem/viscosity: viscosity scaling (Hardy's section 2.1).  The
    model runs with eta_model = eta_natural / lambda, so its velocities are
@@ -30,21 +44,24 @@ using namespace FixConst;
 
 FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), lambda(0.0), eta_model(0.0), eta_natural(0.0), rate(0.0), length(0.0),
-    density(0.0), inertia(1.0), inertia_given(0.0), warn_re(0.1), t0(0.0), npairs(0),
-    reported(0.0), ftm2v(1.0), second(1.0), metre(1.0)
+    density(0.0), inertia(1.0), inertia_given(0.0), warn_re(0.1), t0(0.0), npairs(0), reported(0.0),
+    ftm2v(1.0), second(1.0), metre(1.0)
 {
   // natural time in years and rates in m/ka need the deck's time and length in SI: from
   // LAMMPS's unit system (1 fs and 1 Angstrom in the deck's units); lj has none
   if (strcmp(update->unit_style, "lj") == 0)
-    error->all(FLERR, "Fix {}: units lj have no physical time or length, so natural time in "
+    error->all(FLERR,
+               "Fix {}: units lj have no physical time or length, so natural time in "
                "years and rates in m/ka cannot be reported; use units si (or another physical "
-               "unit system)", style);
+               "unit system)",
+               style);
   ftm2v = force->ftm2v;
   second = 1.0e-15 / force->femtosecond;
   metre = 1.0e-10 / force->angstrom;
 
   const std::string usage = fmt::format("fix ID group {} lambda L (natural eta | model eta) rate "
-                                        "V length L density rho [inertia S] [warn Re]", style);
+                                        "V length L density rho [inertia S] [warn Re]",
+                                        style);
   if (narg < 5) utils::missing_cmd_args(FLERR, fmt::format("fix {}", style), error);
   if (strcmp(arg[3], "lambda") != 0)
     error->all(FLERR, "Fix {}: expected 'lambda' after the style, got '{}'; usage: {}", style,
@@ -63,15 +80,21 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
       if (x <= 0.0) error->all(FLERR, "Fix {}: {} = {} must be > 0", style, kw, x);
       return x;
     };
-    if (kw == "natural") eta_natural = positive(v);
-    else if (kw == "model") eta_model = positive(v);
-    else if (kw == "rate") rate = positive(v);
-    else if (kw == "length") length = positive(v);
-    else if (kw == "density") density = positive(v);
+    if (kw == "natural")
+      eta_natural = positive(v);
+    else if (kw == "model")
+      eta_model = positive(v);
+    else if (kw == "rate")
+      rate = positive(v);
+    else if (kw == "length")
+      length = positive(v);
+    else if (kw == "density")
+      density = positive(v);
     else if (kw == "inertia") {
       if (v < 1.0) error->all(FLERR, "Fix {}: inertia = {} must be >= 1", style, v);
       inertia_given = v;
-    } else if (kw == "warn") warn_re = positive(v);
+    } else if (kw == "warn")
+      warn_re = positive(v);
     else
       error->all(FLERR, "Fix {}: unknown keyword '{}'; usage: {}", style, kw, usage);
     iarg += 2;
@@ -82,15 +105,18 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                      std::make_pair("density", density)})
     if (need.second <= 0.0)
       error->all(FLERR, "Fix {}: keyword '{}' is required; usage: {}", style, need.first, usage);
-  if (eta_natural > 0.0) eta_model = eta_natural / lambda;
-  else eta_natural = eta_model * lambda;
+  if (eta_natural > 0.0)
+    eta_model = eta_natural / lambda;
+  else
+    eta_natural = eta_model * lambda;
   // the derived viscosities go to the pair style (its bounds) and the reported numbers must be
   // finite
   if (!SaltDEM::in_bounds(eta_model) || !SaltDEM::in_bounds(eta_natural))
-    error->all(FLERR, "Fix {}: lambda = {} gives a model viscosity {} and a natural one {} "
+    error->all(FLERR,
+               "Fix {}: lambda = {} gives a model viscosity {} and a natural one {} "
                "beyond the bounds of SaltDEM coefficients [{:g}, {:g}]; check lambda and the "
-               "viscosity given", style, lambda, eta_model, eta_natural, SaltDEM::MIN_VALUE,
-               SaltDEM::MAX_VALUE);
+               "viscosity given",
+               style, lambda, eta_model, eta_natural, SaltDEM::MIN_VALUE, SaltDEM::MAX_VALUE);
   inertia = (inertia_given > 0.0) ? inertia_given : 1.0;
   check_finite();
 
@@ -98,8 +124,10 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   // (and its stable time step check) uses it: every saltdem/viscous sub-style of a hybrid
   const auto salts = viscous_pairs();
   if (salts.empty())
-    error->all(FLERR, "Fix {} needs pair style saltdem/viscous (alone or in pair_style hybrid) "
-               "with its coefficients set before the fix is defined", style);
+    error->all(FLERR,
+               "Fix {} needs pair style saltdem/viscous (alone or in pair_style hybrid) "
+               "with its coefficients set before the fix is defined",
+               style);
   for (Pair *pair : salts) {
     int dim = 0;
     auto eta = (double **) pair->extract("eta", dim);
@@ -112,8 +140,10 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
         }
   }
   if (npairs == 0)
-    error->all(FLERR, "Fix {}: pair style saltdem/viscous needs its coefficients set before the "
-               "fix is defined: give its pair_coeff commands first", style);
+    error->all(FLERR,
+               "Fix {}: pair style saltdem/viscous needs its coefficients set before the "
+               "fix is defined: give its pair_coeff commands first",
+               style);
   // the inertia factor of the salt's discs as far as the integrators are defined yet (init()
   // reads it again): the Reynolds number is also wanted between runs
   if (inertia_given == 0.0) inertia = salt_inertia(salts);
@@ -126,9 +156,10 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
 
   if (comm->me == 0)
-    utils::logmesg(lmp, "fix {}: lambda {:.4g}: viscosity model {:.4g}, natural {:.4g} ({}) (set "
-                   "on {} type pairs)\n", style, lambda, eta_model, eta_natural,
-                   unit_label("Pa s"), npairs);
+    utils::logmesg(lmp,
+                   "fix {}: lambda {:.4g}: viscosity model {:.4g}, natural {:.4g} ({}) (set "
+                   "on {} type pairs)\n",
+                   style, lambda, eta_model, eta_natural, unit_label("Pa s"), npairs);
 }
 
 /* every saltdem/viscous style: the pair style or the sub-styles of pair hybrid (pair_match
@@ -166,7 +197,8 @@ void FixSaltdemViscosity::check_finite()
   for (double q : {reynolds_model(), reynolds_natural(), natural_rate(), strain_rate_model(),
                    strain_rate_natural(), lambda * second / YEAR})
     if (!std::isfinite(q) || q == 0.0)
-      error->all(FLERR, "Fix {}: the Reynolds numbers, strain rates and time scale from lambda "
+      error->all(FLERR,
+                 "Fix {}: the Reynolds numbers, strain rates and time scale from lambda "
                  "= {}, rate = {}, length = {}, density = {}, inertia = {} and the viscosity {} "
                  "overflow or vanish ({}); use values of physical size",
                  style, lambda, rate, length, density, inertia, eta_model, q);
@@ -184,14 +216,17 @@ void FixSaltdemViscosity::init()
 {
   const auto salts = viscous_pairs();
   if (salts.empty())
-    error->all(FLERR, "Fix {} {} needs pair style saltdem/viscous (alone or in pair_style "
-               "hybrid); the pair style was changed since the fix was defined", style, id);
+    error->all(FLERR,
+               "Fix {} {} needs pair style saltdem/viscous (alone or in pair_style "
+               "hybrid); the pair style was changed since the fix was defined",
+               style, id);
   const double s = salt_inertia(salts);
   if (inertia_given > 0.0 && fabs(inertia_given - s) > 1e-12 * s)
-    error->all(FLERR, "Fix {} {}: inertia {} differs from the inertia factor {} of the salt's "
+    error->all(FLERR,
+               "Fix {} {}: inertia {} differs from the inertia factor {} of the salt's "
                "discs (fix saltdem/nve ... inertia S, as pair style saltdem/viscous reports it); "
-               "drop the keyword, the fix reads S from the integrator", style, id,
-               inertia_given, s);
+               "drop the keyword, the fix reads S from the integrator",
+               style, id, inertia_given, s);
   inertia = s;
   check_finite();
 
@@ -203,9 +238,9 @@ void FixSaltdemViscosity::init()
                    "  Reynolds number model {:.3g}, natural {:.3g}; strain rate model {:.3g} 1/s, "
                    "natural {:.3g} 1/s\n"
                    "  1 s of model time is {:.4g} years of natural time\n",
-                   style, lambda, eta_model, eta_natural, unit_label("Pa s"), rate,
-                   rate / lambda, unit_label("m/s"), natural_rate(), length, unit_label("m"),
-                   density, unit_label("kg/m^3"), inertia, reynolds_model(), reynolds_natural(),
+                   style, lambda, eta_model, eta_natural, unit_label("Pa s"), rate, rate / lambda,
+                   unit_label("m/s"), natural_rate(), length, unit_label("m"), density,
+                   unit_label("kg/m^3"), inertia, reynolds_model(), reynolds_natural(),
                    strain_rate_model(), strain_rate_natural(), lambda / YEAR);
   reported = inertia;
 
@@ -237,13 +272,20 @@ double FixSaltdemViscosity::model_time() const
 double FixSaltdemViscosity::compute_vector(int n)
 {
   switch (n) {
-    case 0: return reynolds_model();
-    case 1: return reynolds_natural();
-    case 2: return (model_time() - t0) * second;
-    case 3: return lambda * ((model_time() - t0) * second) / YEAR;
-    case 4: return natural_rate();
-    case 5: return strain_rate_model();
-    case 6: return strain_rate_natural();
+    case 0:
+      return reynolds_model();
+    case 1:
+      return reynolds_natural();
+    case 2:
+      return (model_time() - t0) * second;
+    case 3:
+      return lambda * ((model_time() - t0) * second) / YEAR;
+    case 4:
+      return natural_rate();
+    case 5:
+      return strain_rate_model();
+    case 6:
+      return strain_rate_natural();
   }
   return 0.0;
 }
@@ -265,12 +307,16 @@ void FixSaltdemViscosity::restart(char *buf)
   double list[3];
   memcpy(list, buf, sizeof(double));
   if (list[0] != SaltDEM::RESTART_MARK)
-    error->all(FLERR, "Fix {} {}: the restart file was written by another SaltDEM version (its "
+    error->all(FLERR,
+               "Fix {} {}: the restart file was written by another SaltDEM version (its "
                "data of this fix are not marked); continue with the version that wrote it, or "
-               "define the fix under another ID to start the natural clock again", style, id);
+               "define the fix under another ID to start the natural clock again",
+               style, id);
   memcpy(list, buf, sizeof(list));
   if (list[1] != RESTART_VERSION)
-    error->all(FLERR, "Fix {} {}: the restart file holds this fix's data in layout version {}, "
-               "this version reads layout {}", style, id, list[1], RESTART_VERSION);
+    error->all(FLERR,
+               "Fix {} {}: the restart file holds this fix's data in layout version {}, "
+               "this version reads layout {}",
+               style, id, list[1], RESTART_VERSION);
   t0 = list[2];
 }

@@ -1,5 +1,19 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -25,17 +39,17 @@ class FixSaltdemViscosity : public Fix {
   void restart(char *) override;
 
  protected:
-  double lambda;        // viscosity scaling factor: eta_model = eta_natural / lambda
+  double lambda;    // viscosity scaling factor: eta_model = eta_natural / lambda
   double eta_model, eta_natural;
-  double rate;          // driving velocity of the model (length/time)
-  double length;        // length scale of the flow (m)
-  double density;       // density of the viscous material (mass/volume)
-  double inertia;       // inertia factor S of the salt's discs (fix saltdem/nve, through the pair)
-  double inertia_given; // the keyword 'inertia' (0: not given), which must agree with S
-  double warn_re;       // warn when the model Reynolds number exceeds this
-  double t0;            // model time when the fix was defined (natural time counts from it)
-  int npairs;           // type pairs whose viscosity the fix set
-  double reported;      // the S of the summary in the log (0: none yet)
+  double rate;       // driving velocity of the model (length/time)
+  double length;     // length scale of the flow (m)
+  double density;    // density of the viscous material (mass/volume)
+  double inertia;    // inertia factor S of the salt's discs (fix saltdem/nve, through the pair)
+  double inertia_given;    // the keyword 'inertia' (0: not given), which must agree with S
+  double warn_re;          // warn when the model Reynolds number exceeds this
+  double t0;               // model time when the fix was defined (natural time counts from it)
+  int npairs;              // type pairs whose viscosity the fix set
+  double reported;         // the S of the summary in the log (0: none yet)
 
   std::vector<class Pair *> viscous_pairs();
   double salt_inertia(const std::vector<class Pair *> &);
@@ -55,7 +69,7 @@ class FixSaltdemViscosity : public Fix {
   double strain_rate_model() const { return rate / length / second; }
   double strain_rate_natural() const { return rate / (lambda * length) / second; }
   static constexpr double YEAR = 365.25 * 24.0 * 3600.0;    // s
-  static constexpr double RESTART_VERSION = 1.0;             // layout of the restart data
+  static constexpr double RESTART_VERSION = 1.0;            // layout of the restart data
 };
 
 }    // namespace LAMMPS_NS

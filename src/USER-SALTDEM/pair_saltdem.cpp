@@ -1,17 +1,36 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 ------------------------------------------------------------------------- */
 
 #include "pair_saltdem.h"
 
+#include "fix_saltdem_rebuild.h"
 #include "saltdem_check.h"
 
+#include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
-#include "fix_saltdem_rebuild.h"
+#include "fix_neigh_history.h"
+#include "force.h"
 #include "memory.h"
 #include "modify.h"
 #include "neighbor.h"
+#include "update.h"
 
 #include <cfloat>
 #include <cmath>
@@ -19,13 +38,12 @@
 
 using namespace LAMMPS_NS;
 
-
 /* ---------------------------------------------------------------------- */
 
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
     Pair(lmp), name(style_name), hist_id(history_id), fix_history(nullptr), fix_rebuild(nullptr),
-    transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr),
-    reach_abs(nullptr), dtfactor(0.2), tbounds_built(-1), tbounds_inum(-1), recheck(false)
+    transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr), reach_abs(nullptr),
+    dtfactor(0.2), recheck(false)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;
@@ -79,8 +97,8 @@ void PairSaltdem::allocate()
 /* check the argument count of pair_coeff and parse its I,J type ranges,
    allocating on first use */
 
-void PairSaltdem::check_types(int narg, char **arg, int nmin, const char *usage, int &ilo,
-                              int &ihi, int &jlo, int &jhi)
+void PairSaltdem::check_types(int narg, char **arg, int nmin, const char *usage, int &ilo, int &ihi,
+                              int &jlo, int &jhi)
 {
   if (narg < nmin)
     error->all(FLERR, "Pair style {}: pair_coeff needs {} or more arguments, got {}: {}", name,
@@ -156,7 +174,8 @@ void PairSaltdem::setup()
   const auto limits = check_timestep("");
   for (const auto &l : limits)
     if (l.pair == this && !l.why.empty() && comm->me == 0)
-      utils::logmesg(lmp, "Pair style {}: timestep {:.6g} = {:.3g} of the stable limit {:.6g} ({})\n",
+      utils::logmesg(lmp,
+                     "Pair style {}: timestep {:.6g} = {:.3g} of the stable limit {:.6g} ({})\n",
                      name, update->dt, update->dt / l.dt, l.dt, l.why);
 }
 
@@ -200,8 +219,8 @@ double PairSaltdem::stable_limit(std::string &why, bool cached)
   double best = 0.0;
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) {
-      if (!owns(i, j)) continue;                                  // another sub-style's pair
-      if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;               // a type without atoms
+      if (!owns(i, j)) continue;                                 // another sub-style's pair
+      if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;              // a type without atoms
       if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
       pair_limit(i, j, MIN(mmin[i], mmin[j]), MIN(mv[i], mv[j]), best, why);
     }
@@ -229,8 +248,10 @@ PairSaltdem::Limit PairSaltdem::smallest_limit(LAMMPS *lmp, const std::string &w
   for (auto pair : saltdem_styles(lmp)) {
     // (before the run's init_style: saltdem/timestep)
     if (!lmp->atom->radius_flag || !lmp->atom->rmass_flag)
-      lmp->error->all(FLERR, "{}Pair style {} requires per-atom radius and mass: use 'atom_style "
-                      "sphere'", who, pair->name);
+      lmp->error->all(FLERR,
+                      "{}Pair style {} requires per-atom radius and mass: use 'atom_style "
+                      "sphere'",
+                      who, pair->name);
     Limit l{pair, 0.0, ""};
     l.dt = pair->stable_limit(l.why, cached);
     if (!l.why.empty() && !(l.dt > 0.0 && std::isfinite(l.dt)))
@@ -249,8 +270,8 @@ PairSaltdem::Limit PairSaltdem::smallest_limit(LAMMPS *lmp, const std::string &w
 std::vector<PairSaltdem::Limit> PairSaltdem::check_timestep(const std::string &when)
 {
   std::vector<Limit> all;
-  const Limit best = smallest_limit(lmp, when.empty() ? "" : "After a change during the run: ",
-                                    &all, !when.empty());
+  const Limit best = smallest_limit(
+      lmp, when.empty() ? "" : "After a change during the run: ", &all, !when.empty());
   for (auto &l : all) l.pair->limits_checked();
   if (best.pair && update->dt > best.dt) {
     // under pair hybrid: the limit of each SaltDEM sub-style, so that the dt asked for is the
@@ -278,8 +299,8 @@ void PairSaltdem::recheck_timestep()
 {
   if (!recheck) return;
   recheck = false;
-  check_timestep(fmt::format("at step {}, after {} changed during the run, the ",
-                             update->ntimestep, recheck_what));
+  check_timestep(fmt::format("at step {}, after {} changed during the run, the ", update->ntimestep,
+                             recheck_what));
 }
 
 /* smallest mass per type that the integrator sees: rmass times the inertia
@@ -313,7 +334,8 @@ void PairSaltdem::min_inertial_mass(double *mmin, double *mvmin)
     const double vol = disc ? M_PI * r * r : 4.0 * M_PI / 3.0 * r * r * r;
     count[t]++;
     if (scale > 0.0) local[t] = MIN(local[t], scale * atom->rmass[i]);
-    if (scale > 0.0 && vol > 0.0) local[n + 1 + t] = MIN(local[n + 1 + t], scale * atom->rmass[i] / vol);
+    if (scale > 0.0 && vol > 0.0)
+      local[n + 1 + t] = MIN(local[n + 1 + t], scale * atom->rmass[i] / vol);
   }
   MPI_Allreduce(local.data(), both.data(), 2 * (n + 1), MPI_DOUBLE, MPI_MIN, world);
   for (int t = 1; t <= n; t++) {
@@ -426,8 +448,10 @@ void PairSaltdem::read_restart_settings(FILE *fp)
                "one reads restart format {:.0f}, which names its fields), whose coefficients and "
                "contact history are laid out differently. Continue the run with the version "
                "that wrote it, or start again from a data file (write_data) with this one",
-               name, mark > 0.0 ? "one before restart formats were marked"
-                                : fmt::format("restart format {:.0f}", mark), RESTART_MARK);
+               name,
+               mark > 0.0 ? "one before restart formats were marked"
+                          : fmt::format("restart format {:.0f}", mark),
+               RESTART_MARK);
   int version = 0;
   if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
   MPI_Bcast(&version, 1, MPI_INT, 0, world);
@@ -440,7 +464,8 @@ void PairSaltdem::read_restart_settings(FILE *fp)
   const auto settings = setting_names();
   read_names(fp, settings, "settings");
   std::vector<double> v(settings.size());
-  if (me == 0 && !v.empty()) utils::sfread(FLERR, v.data(), sizeof(double), v.size(), fp, nullptr, error);
+  if (me == 0 && !v.empty())
+    utils::sfread(FLERR, v.data(), sizeof(double), v.size(), fp, nullptr, error);
   MPI_Bcast(v.data(), (int) v.size(), MPI_DOUBLE, 0, world);
   unpack_settings(v.data());
   const auto coeffs = coeff_names();
@@ -473,9 +498,10 @@ void PairSaltdem::read_names(FILE *fp, const std::vector<std::string> &want, con
     got.push_back(s);
   }
   if (got != want)
-    error->all(FLERR, "Pair style {}: the restart file's {} are ({}), this version of the style "
-               "has ({}); start again from a data file (write_data) with this version", name,
-               what, utils::join_words(got, " "), utils::join_words(want, " "));
+    error->all(FLERR,
+               "Pair style {}: the restart file's {} are ({}), this version of the style "
+               "has ({}); start again from a data file (write_data) with this version",
+               name, what, utils::join_words(got, " "), utils::join_words(want, " "));
 }
 
 /* history of (i,j) seen from j: antisymmetric by default, but the rolling
@@ -490,30 +516,4 @@ double PairSaltdem::memory_usage()
 {
   const int n = atom->ntypes + 1;
   return (double) n * n * (2 * sizeof(double) + sizeof(int) + params_size());
-}
-
-/* slices of the neighbour list with about equal work (pairs + 1 per atom)
-   per thread, for the OpenMP variants */
-
-const int *PairSaltdem::thread_bounds(int nthreads)
-{
-  const int inum = list->inum;
-  if ((int) tbounds.size() != nthreads + 1 || tbounds_built != neighbor->lastcall ||
-      tbounds_inum != inum) {
-    tbounds.assign(nthreads + 1, inum);
-    tbounds[0] = 0;
-    const int *ilist = list->ilist;
-    const int *numneigh = list->numneigh;
-    bigint total = 0;
-    for (int ii = 0; ii < inum; ii++) total += numneigh[ilist[ii]] + 1;
-    bigint sum = 0;
-    int t = 1;
-    for (int ii = 0; ii < inum && t < nthreads; ii++) {
-      sum += numneigh[ilist[ii]] + 1;
-      while (t < nthreads && sum * nthreads >= total * t) tbounds[t++] = ii + 1;
-    }
-    tbounds_built = neighbor->lastcall;
-    tbounds_inum = inum;
-  }
-  return tbounds.data();
 }

@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    pair saltdem/cohesive: the frictional-cohesive cover.  The law itself is
    SaltDEM::cohesive_force (saltdem_contact.h); this file parses and checks
@@ -9,14 +23,17 @@
 #include "pair_saltdem_cohesive.h"
 
 #include "saltdem_check.h"
+#include "saltdem_contact.h"
+#include "saltdem_pair_loop.h"
 
+#include "atom.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "force.h"
 #include "memory.h"
+#include "update.h"
 
-#include <cfloat>
 #include <cmath>
 #include <cstring>
 
@@ -25,7 +42,8 @@ using namespace LAMMPS_NS;
 /* ---------------------------------------------------------------------- */
 
 PairSaltdemCohesive::PairSaltdemCohesive(LAMMPS *lmp) :
-    PairSaltdem(lmp, "saltdem/cohesive", "SALTDEM_COHESIVE_HISTORY"), params(nullptr), rolling(false), dt(0.0)
+    PairSaltdem(lmp, "saltdem/cohesive", "SALTDEM_COHESIVE_HISTORY"), params(nullptr),
+    rolling(false), dt(0.0)
 {
   size_history = 3;
 }
@@ -49,6 +67,23 @@ void PairSaltdemCohesive::compute(int eflag, int vflag)
   compute_serial(this, eflag, vflag);
 }
 
+void *PairSaltdemCohesive::pair_params(int i, int j)
+{
+  return &params[i][j];
+}
+
+size_t PairSaltdemCohesive::params_size() const
+{
+  return sizeof(SaltDEM::CohesiveParams);
+}
+
+/* the attraction acts up to range beyond contact (with a tensile strength) */
+
+double PairSaltdemCohesive::range(int i, int j) const
+{
+  return params[i][j].tens > 0.0 ? params[i][j].range : 0.0;
+}
+
 /* pair_style saltdem/cohesive [dtfactor C] */
 
 void PairSaltdemCohesive::settings(int narg, char **arg)
@@ -58,12 +93,14 @@ void PairSaltdemCohesive::settings(int narg, char **arg)
     if (strcmp(arg[iarg], "dtfactor") == 0) {
       if (iarg + 2 > narg)
         utils::missing_cmd_args(FLERR, fmt::format("pair_style {} dtfactor", name), error);
-      dtfactor = SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Pair style {}: dtfactor", name), lmp);
+      dtfactor =
+          SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Pair style {}: dtfactor", name), lmp);
       if (dtfactor <= 0.0 || dtfactor > 0.8)
         error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, 0.8]", name, dtfactor);
       iarg += 2;
     } else
-      error->all(FLERR, "Pair style {}: unknown keyword '{}' (expected: dtfactor)", name, arg[iarg]);
+      error->all(FLERR, "Pair style {}: unknown keyword '{}' (expected: dtfactor)", name,
+                 arg[iarg]);
   }
 }
 
@@ -89,7 +126,8 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
 
   auto positive = [&](double v, const char *what, bool strict) {
     if (v < 0.0 || (strict && v == 0.0))
-      error->all(FLERR, "Pair style {}: {} = {} must be {}", name, what, v, strict ? "> 0" : ">= 0");
+      error->all(FLERR, "Pair style {}: {} = {} must be {}", name, what, v,
+                 strict ? "> 0" : ">= 0");
   };
   positive(p.kn, "kn", true);
   positive(p.kt, "kt", false);
@@ -101,7 +139,8 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
   int iarg = 8;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "damp") == 0) {
-      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, fmt::format("pair_coeff {} damp", name), error);
+      if (iarg + 3 > narg)
+        utils::missing_cmd_args(FLERR, fmt::format("pair_coeff {} damp", name), error);
       p.zeta_n = value(arg[iarg + 1], "damp zeta_n");
       p.zeta_t = value(arg[iarg + 2], "damp zeta_t");
       if (p.zeta_n < 0.0 || p.zeta_n >= 1.0 || p.zeta_t < 0.0 || p.zeta_t >= 1.0)
@@ -129,10 +168,13 @@ void PairSaltdemCohesive::coeff(int narg, char **arg)
   // the damping coefficients must be finite (init_one derives them again)
   SaltDEM::cohesive_derive(p, force->ftm2v);
   if (!std::isfinite(p.cn) || !std::isfinite(p.ct))
-    error->all(FLERR, "Pair style {}: the damping coefficients 2 zeta sqrt(k) = {} {} from kn = "
-               "{}, kt = {} and damp {} {} are not finite", name, p.cn, p.ct, p.kn, p.kt,
-               p.zeta_n, p.zeta_t);
-  assign_coeffs(ilo, ihi, jlo, jhi, [&](int i, int j) { params[i][j] = p; });
+    error->all(FLERR,
+               "Pair style {}: the damping coefficients 2 zeta sqrt(k) = {} {} from kn = "
+               "{}, kt = {} and damp {} {} are not finite",
+               name, p.cn, p.ct, p.kn, p.kt, p.zeta_n, p.zeta_t);
+  assign_coeffs(ilo, ihi, jlo, jhi, [&](int i, int j) {
+    params[i][j] = p;
+  });
 }
 
 /* cross types: springs in series, strengths by geometric mean (an interface
@@ -173,7 +215,8 @@ void PairSaltdemCohesive::init_style()
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && params[i][j].kr > 0.0) want = true;
   if (fix_history && want != rolling)
-    error->all(FLERR, "Pair style {}: rolling resistance was {} after the first run; set it "
+    error->all(FLERR,
+               "Pair style {}: rolling resistance was {} after the first run; set it "
                "before the first run (or issue 'pair_style none' and define the pair style again)",
                name, want ? "switched on" : "switched off");
   rolling = want;
@@ -194,8 +237,7 @@ void PairSaltdemCohesive::init_style()
    turns the disc (SaltDEM::rotation_factor).  Stable dt = dtfactor * sqrt(m_min / k), with
    k in mass / time^2 (times ftm2v: 1 in SI). */
 
-void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, double &best,
-                                     std::string &why)
+void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, double &best, std::string &why)
 {
   const double rot = SaltDEM::rotation_factor(domain->dimension);
   const auto &p = params[i][j];

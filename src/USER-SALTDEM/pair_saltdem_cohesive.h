@@ -1,5 +1,19 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -14,6 +28,9 @@ PairStyle(saltdem/cohesive,PairSaltdemCohesive);
 #include "pair_saltdem.h"
 
 namespace LAMMPS_NS {
+namespace SaltDEM {
+  struct CohesiveParams;
+}
 
 class PairSaltdemCohesive : public PairSaltdem {
  public:
@@ -25,34 +42,25 @@ class PairSaltdemCohesive : public PairSaltdem {
   void init_style() override;
   void *extract(const char *, int &) override;
 
-  // the force law, inlined into the shared pair loop (PairSaltdem::loop); no per-atom sum
+  // the force law, inlined into the shared pair loop (PairSaltdem::loop; defined in
+  // saltdem_pair_loop.h); no per-atom sum
   static constexpr bool HISTORY = true;    // the law keeps values per touching pair
   static constexpr bool PAIR_SUM = false;
   template <int DIM, int EVFLAG>
-  int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *hist,
-          bool advance, double *f, double *ti, double *tj, double &evdwl, double &) const
-  {
-    SaltDEM::Contact c;
-    SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],
-                                     a.radius[i], a.radius[j], a.rmass[i], a.rmass[j], r, c,
-                                     rolling);
-    return SaltDEM::cohesive_force<DIM, EVFLAG>(params[itype][jtype], c, hist, rolling, dt,
-                                                advance, f, ti, tj, evdwl)
-        ? (LAW_TOUCH | LAW_TORQUE)
-        : 0;
-  }
+  int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *hist, bool advance,
+          double *f, double *ti, double *tj, double &evdwl, double &) const;
 
  protected:
-  SaltDEM::CohesiveParams **params;
-  bool rolling;    // any pair with rolling resistance: 3 more history values
+  SaltDEM::CohesiveParams **params;    // per type pair coefficients (saltdem_contact.h)
+  bool rolling;                        // any pair with rolling resistance: 3 more history values
   double dt;
 
   void allocate_params(int) override;
-  void *pair_params(int i, int j) override { return &params[i][j]; }
-  size_t params_size() const override { return sizeof(SaltDEM::CohesiveParams); }
+  void *pair_params(int i, int j) override;
+  size_t params_size() const override;
   void mix(int, int) override;
   void derive(int, int) override;
-  double range(int i, int j) const override { return params[i][j].tens > 0.0 ? params[i][j].range : 0.0; }
+  double range(int i, int j) const override;
   void pair_limit(int, int, double, double, double &, std::string &) override;
   int restart_version() const override { return 1; }
   std::vector<std::string> setting_names() const override { return {"dtfactor"}; }

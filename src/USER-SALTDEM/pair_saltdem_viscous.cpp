@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    pair saltdem/viscous: the linear Newtonian salt, and the no-slip
    boundary contact of cover-salt, salt-wall and cover-wall pairs.  The laws
@@ -12,16 +26,18 @@
 
 #include "fix_saltdem_density.h"
 #include "saltdem_check.h"
+#include "saltdem_contact.h"
+#include "saltdem_pair_loop.h"
 
+#include "atom.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
-#include "suffix.h"
-
-#include "omp_compat.h"
+#include "neigh_list.h"
+#include "update.h"
 
 #include <cfloat>
 #include <cmath>
@@ -31,10 +47,9 @@ using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
-    apress(nullptr), scratch(nullptr), fix_density(nullptr), fluidself(nullptr),
-    isfluid(nullptr), nmax(0), any_fluid(false), calibration(DEFAULT_CALIBRATION),
-    correction(DEFAULT_CORRECTION), viscfactor(0.5), calibration_checked(DEFAULT_CALIBRATION),
-    salt_inertia(1.0)
+    apress(nullptr), scratch(nullptr), fix_density(nullptr), fluidself(nullptr), isfluid(nullptr),
+    nmax(0), any_fluid(false), calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION),
+    viscfactor(0.5), calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
   comm_forward = 2;
 }
@@ -65,6 +80,39 @@ void PairSaltdemViscous::allocate_params(int n)
 void PairSaltdemViscous::compute(int eflag, int vflag)
 {
   compute_serial(this, eflag, vflag);
+}
+
+void *PairSaltdemViscous::pair_params(int i, int j)
+{
+  return &params[i][j];
+}
+
+size_t PairSaltdemViscous::params_size() const
+{
+  return sizeof(SaltDEM::ViscousParams);
+}
+
+/* the dashpots of a CONTACT pair act up to its gap beyond contact; a FLUID pair reaches 2h
+   between the centres */
+
+double PairSaltdemViscous::range(int i, int j) const
+{
+  return params[i][j].mode == SaltDEM::VISCOUS_CONTACT ? params[i][j].gap : 0.0;
+}
+
+double PairSaltdemViscous::range_abs(int i, int j) const
+{
+  return params[i][j].mode == SaltDEM::VISCOUS_FLUID ? 2.0 * params[i][j].h : 0.0;
+}
+
+double PairSaltdemViscous::fluid_h(int t) const
+{
+  return params[t][t].h;
+}
+
+double PairSaltdemViscous::fluid_K(int t) const
+{
+  return params[t][t].K;
 }
 
 /* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C] */
@@ -133,8 +181,10 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
   } else if (kw == "contact") {
     p.mode = SaltDEM::VISCOUS_CONTACT;
     if (p.kn <= 0.0)
-      error->all(FLERR, "Pair style {}: contact kn = {} must be > 0 (a boundary needs its elastic "
-                 "repulsion)", name, p.kn);
+      error->all(FLERR,
+                 "Pair style {}: contact kn = {} must be > 0 (a boundary needs its elastic "
+                 "repulsion)",
+                 name, p.kn);
     p.gap = value(arg[5], "contact gap");
     if (p.gap < 0.0) error->all(FLERR, "Pair style {}: contact gap = {} must be >= 0", name, p.gap);
     if (narg == 8 && strcmp(arg[6], "tangential") == 0) {
@@ -142,8 +192,10 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
       if (p.ratio < 0.0)
         error->all(FLERR, "Pair style {}: tangential ratio = {} must be >= 0", name, p.ratio);
     } else if (narg != 6)
-      error->all(FLERR, "Pair style {}: unexpected arguments after 'contact {}' (allowed: "
-                 "tangential R); usage: {}", name, arg[5], usage);
+      error->all(FLERR,
+                 "Pair style {}: unexpected arguments after 'contact {}' (allowed: "
+                 "tangential R); usage: {}",
+                 name, arg[5], usage);
   } else
     error->all(FLERR, "Pair style {}: unknown law '{}' (expected fluid or contact); usage: {}",
                name, kw, usage);
@@ -179,8 +231,6 @@ void PairSaltdemViscous::mix(int i, int j)
 
 void PairSaltdemViscous::init_style()
 {
-  dim2 = (domain->dimension == 2);
-  volfac = dim2 ? M_PI : 4.0 * M_PI / 3.0;
   any_fluid = false;
   for (int i = 1; i <= atom->ntypes; i++) {
     // (under pair hybrid, types of other sub-styles have no coefficients here)
@@ -207,9 +257,10 @@ void PairSaltdemViscous::init_style()
     if (!f) f = modify->add_fix(fmt::format("{} all SALTDEM_DENSITY", density_id));
     fix_density = dynamic_cast<FixSaltdemDensity *>(f);
     if (!fix_density)
-      error->all(FLERR, "Pair style {}: fix ID {} is taken by a fix of style {}; the pair style "
-                 "keeps the salt's density in an internal fix of that ID", name, density_id,
-                 f->style);
+      error->all(FLERR,
+                 "Pair style {}: fix ID {} is taken by a fix of style {}; the pair style "
+                 "keeps the salt's density in an internal fix of that ID",
+                 name, density_id, f->style);
     fix_density->pair = this;
   }
   PairSaltdem::init_style();
@@ -230,7 +281,7 @@ void PairSaltdemViscous::kernel_density(double *out)
 
 template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
 {
-  const auto x = atom->x ? (const double (*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
+  const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
   const double *m = atom->rmass;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
@@ -238,7 +289,8 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
   const int newton_pair = force->newton_pair;
   for (int i = 0; i < nall; i++) {
     const int t = type[i];
-    out[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0) : 0.0;
+    out[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0)
+                                          : 0.0;
   }
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -273,13 +325,7 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
 
 void PairSaltdemViscous::pre_loop()
 {
-  // the force pass sums every pair's q (0 for CONTACT pairs) into the fix's d rho / dt, or
-  // under -sf omp into one slice per thread (post_loop adds them up): needed with no FLUID
-  // pair too (into a scratch array then)
   grow_arrays();
-  const int nthreads = (suffix_flag & Suffix::OMP) ? comm->nthreads : 1;
-  if (nthreads > 1 && (bigint) nthreads * nmax > (bigint) rho_thr.size())
-    rho_thr.resize((size_t) nthreads * nmax);
   if (!any_fluid) return;
   const int nlocal = atom->nlocal;
   const double *m = atom->rmass;
@@ -314,36 +360,17 @@ void PairSaltdemViscous::grow_arrays()
   if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
 }
 
-/* the array the force pass sums d rho / dt into: the density fix's, or thread tid's slice
-   (zeroed here, by the thread that fills it); with no FLUID pair a scratch array */
+/* the array the force pass sums d rho / dt into (zeroed here): the density fix's; with no
+   FLUID pair (every q is 0) a scratch array.  The OpenMP variant sums per thread and adds
+   the threads' sums into the same array. */
 
-double *PairSaltdemViscous::loop_sum(int tid, int nthreads)
+double *PairSaltdemViscous::loop_sum()
 {
   const int nall = atom->nlocal + atom->nghost;
   if (!any_fluid && !scratch) memory->create(scratch, nmax, "pair:scratch");
   double *sum = any_fluid ? fix_density->drho : scratch;
-  double *out = (nthreads > 1) ? rho_thr.data() + (size_t) tid * nmax : sum;
-  for (int i = 0; i < nall; i++) out[i] = 0.0;
-  return out;
-}
-
-/* -sf omp: the threads' slices of d rho / dt added up (not during setup, when the fix does not
-   integrate) */
-
-void PairSaltdemViscous::post_loop(int nthreads)
-{
-  if (!any_fluid || update->setupflag || nthreads <= 1) return;
-  const int nall = atom->nlocal + atom->nghost;
-  const double *part = rho_thr.data();
-  double *drho = fix_density->drho;
-#if defined(_OPENMP)
-#pragma omp parallel for num_threads(nthreads) schedule(static) LMP_DEFAULT_NONE LMP_SHARED(part, nall, nthreads, drho)
-#endif
-  for (int i = 0; i < nall; i++) {
-    double add = 0.0;
-    for (int t = 0; t < nthreads; t++) add += part[(size_t) t * nmax + i];
-    drho[i] = add;
-  }
+  for (int i = 0; i < nall; i++) sum[i] = 0.0;
+  return sum;
 }
 
 int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -450,7 +477,8 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
   if (p.kn > 0.0)
     consider_limit(dtfactor * sqrt(m / (p.kn * f2v)), best, why, [&] {
       return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
-                         "(dt < {} * sqrt(m/kn))", p.kn, i, j, m, dtfactor);
+                         "(dt < {} * sqrt(m/kn))",
+                         p.kn, i, j, m, dtfactor);
     });
   double lim;
   std::string formula;
@@ -459,14 +487,16 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
     // disc volume over a packing fraction of 0.7
     lim = viscfactor * mv * 0.7 * p.h * p.h / (7.0 * correction * e * f2v);
     formula = fmt::format("dt < {} * S m h^2 / (7 correction eta V), V = disc/0.7, h = {:.6g}, "
-                          "correction = {:.6g}", viscfactor, p.h, correction);
+                          "correction = {:.6g}",
+                          viscfactor, p.h, correction);
     // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
     if (p.K > 0.0) {
       const double c = sqrt(p.K * f2v / (0.7 * mv));
       consider_limit(0.25 * p.h / c, best, why, [&] {
         return fmt::format("K = {:.6g} of types {} {} (sound speed {:.4g} with the inertial "
                            "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
-                           "K or more inertia", p.K, i, j, c, p.h);
+                           "K or more inertia",
+                           p.K, i, j, c, p.h);
       });
     }
   } else {

@@ -1,5 +1,19 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -13,9 +27,10 @@ PairStyle(saltdem/viscous,PairSaltdemViscous);
 
 #include "pair_saltdem.h"
 
-#include <vector>
-
 namespace LAMMPS_NS {
+namespace SaltDEM {
+  struct ViscousParams;
+}
 
 class PairSaltdemViscous : public PairSaltdem {
  public:
@@ -24,6 +39,7 @@ class PairSaltdemViscous : public PairSaltdem {
   void compute(int, int) override;
   void settings(int, char **) override;
   void coeff(int, char **) override;
+  void init_style() override;
   double init_one(int, int) override;
   void *extract(const char *, int &) override;
   void pre_loop() override;
@@ -31,50 +47,26 @@ class PairSaltdemViscous : public PairSaltdem {
   void unpack_forward_comm(int, int, double *) override;
   double memory_usage() override;
 
-  double *loop_sum(int tid, int nthreads) override;
-  void post_loop(int nthreads) override;
+  double *loop_sum() override;
 
   // what the density fix (FixSaltdemDensity) reads: some type pair is FLUID; per type, its
   // own pair is FLUID; the kernel h and bulk modulus K of a type's own pair; the kernel
   // density of the owned and ghost atoms
   bool any_fluid_pair() const { return any_fluid; }
   const int *fluid_types() const { return fluidself; }
-  double fluid_h(int t) const { return params[t][t].h; }
-  double fluid_K(int t) const { return params[t][t].K; }
+  double fluid_h(int t) const;
+  double fluid_K(int t) const;
   void kernel_density(double *out);
 
-  // the force law, inlined into the shared pair loop (PairSaltdem::loop): FLUID pairs need
-  // only positions and velocities of the centres and make no torque.  q: the pair's term
-  // v_ij . grad_i W_ij of the continuity equation, summed in the same pass into the density
-  // fix's d rho / dt
+  // the force law, inlined into the shared pair loop (PairSaltdem::loop; defined in
+  // saltdem_pair_loop.h): FLUID pairs need only positions and velocities of the centres and
+  // make no torque.  q: the pair's term v_ij . grad_i W_ij of the continuity equation, summed
+  // in the same pass into the density fix's d rho / dt
   static constexpr bool HISTORY = false;    // no values kept per pair
   static constexpr bool PAIR_SUM = true;
   template <int DIM, int EVFLAG>
-  int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *, bool,
-          double *f, double *ti, double *tj, double &evdwl, double &q) const
-  {
-    const SaltDEM::ViscousParams &p = params[itype][jtype];
-    if (p.mode == SaltDEM::VISCOUS_FLUID) {
-      const double d[3] = {a.x[i][0] - a.x[j][0], a.x[i][1] - a.x[j][1],
-                           (DIM == 3) ? a.x[i][2] - a.x[j][2] : 0.0};
-      const double vr[3] = {a.v[i][0] - a.v[j][0], a.v[i][1] - a.v[j][1],
-                            (DIM == 3) ? a.v[i][2] - a.v[j][2] : 0.0};
-      // SPH pressure m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) with a_i = m_i P_i / rho_i^2;
-      // a particle that is not fluid (wall, cover) mirrors the fluid's pressure
-      const double pc = SaltDEM::pressure_pair(isfluid[itype], isfluid[jtype], a.rmass[i],
-                                               a.rmass[j], apress[i], apress[j]);
-      return SaltDEM::viscous_fluid_force<DIM, EVFLAG>(p, d, vr, r, a.radius[i] + a.radius[j],
-                                                       vol[i], vol[j], pc, f, evdwl, q)
-          ? LAW_TOUCH
-          : 0;
-    }
-    SaltDEM::Contact c;
-    SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],
-                                     a.radius[i], a.radius[j], a.rmass[i], a.rmass[j], r, c,
-                                     false);
-    return (SaltDEM::viscous_contact_force<DIM, EVFLAG>(p, c, f, ti, tj, evdwl) ? LAW_TOUCH : 0) |
-        LAW_TORQUE;
-  }
+  int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *, bool, double *f,
+          double *ti, double *tj, double &evdwl, double &q) const;
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
   static constexpr double DEFAULT_CALIBRATION = 1.0;
@@ -90,32 +82,22 @@ class PairSaltdemViscous : public PairSaltdem {
   double *scratch;    // no FLUID pair: what the force pass sums the (zero) q into
   class FixSaltdemDensity *fix_density;    // FLUID: the density (state) and d rho / dt
   std::string density_id;                  // its ID
-  int *fluidself;     // per type: its own pair is FLUID (continuity density, reference density)
-  int *isfluid;       // per type: FLUID with K > 0 (carries pressure)
-  int nmax;           // allocated length of vol
-  bool any_fluid;     // some type pair uses the FLUID law
+  int *fluidself;    // per type: its own pair is FLUID (continuity density, reference density)
+  int *isfluid;      // per type: FLUID with K > 0 (carries pressure)
+  int nmax;          // allocated length of vol
+  bool any_fluid;    // some type pair uses the FLUID law
   double calibration;
-  double correction;  // FLUID: Morris viscosity multiplied by this (measured, see above)
-  double viscfactor;  // safety factor on the viscous stable dt
-  bool dim2;          // 2D: discs
-  double volfac;      // pi (2D) or 4 pi / 3 (3D)
+  double correction;    // FLUID: Morris viscosity multiplied by this (measured, see above)
+  double viscfactor;    // safety factor on the viscous stable dt
   template <int DIM> void kernel_density(double *out);
   void grow_arrays();    // vol, apress (and scratch) for the owned and ghost atoms
-  std::vector<double> rho_thr;    // -sf omp: per-thread partial sums of d rho / dt
   void allocate_params(int) override;
-  void *pair_params(int i, int j) override { return &params[i][j]; }
-  size_t params_size() const override { return sizeof(SaltDEM::ViscousParams); }
+  void *pair_params(int i, int j) override;
+  size_t params_size() const override;
   void mix(int, int) override;
   void derive(int, int) override;
-  double range(int i, int j) const override
-  {
-    return params[i][j].mode == SaltDEM::VISCOUS_CONTACT ? params[i][j].gap : 0.0;
-  }
-  double range_abs(int i, int j) const override
-  {
-    return params[i][j].mode == SaltDEM::VISCOUS_FLUID ? 2.0 * params[i][j].h : 0.0;
-  }
-  void init_style() override;
+  double range(int i, int j) const override;
+  double range_abs(int i, int j) const override;
   void pair_limit(int, int, double, double, double &, std::string &) override;
   int restart_version() const override { return 1; }
   std::vector<std::string> setting_names() const override;

@@ -1,5 +1,19 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    The contact math of the package, written once.  Every pair style, its
    OpenMP variant and any wall interaction call these inline functions:
@@ -25,179 +39,180 @@
 
 #include <cmath>
 
+namespace LAMMPS_NS {
 namespace SaltDEM {
 
-/* Geometry and kinematics of one pair: computed once, read by the laws. */
-struct Contact {
-  double n[3];        // unit normal, from j to i
-  double r;           // centre distance
-  double delta;       // overlap r_i + r_j - r (> 0 when touching, < 0 is a gap)
-  double li, lj;      // lever arms from the centres to the contact point
-  double vr[3];       // relative velocity of the centres v_i - v_j
-  double vn;          // normal relative velocity (v_i - v_j).n, < 0 approaching
-  double vt[3];       // tangential relative velocity at the contact point
-  double wr[3];       // relative angular velocity w_i - w_j
-  double meff;        // reduced mass m_i m_j / (m_i + m_j)
-  double reff;        // reduced radius r_i r_j / (r_i + r_j)
-};
+  /* Geometry and kinematics of one pair: computed once, read by the laws. */
+  struct Contact {
+    double n[3];      // unit normal, from j to i
+    double r;         // centre distance
+    double delta;     // overlap r_i + r_j - r (> 0 when touching, < 0 is a gap)
+    double li, lj;    // lever arms from the centres to the contact point
+    double vr[3];     // relative velocity of the centres v_i - v_j
+    double vn;        // normal relative velocity (v_i - v_j).n, < 0 approaching
+    double vt[3];     // tangential relative velocity at the contact point
+    double wr[3];     // relative angular velocity w_i - w_j
+    double meff;      // reduced mass m_i m_j / (m_i + m_j)
+    double reff;      // reduced radius r_i r_j / (r_i + r_j)
+  };
 
-/* Fill c for discs/spheres i and j.  r > 0 is required (callers skip r == 0).
+  /* Fill c for discs/spheres i and j.  r > 0 is required (callers skip r == 0).
    want_reff = false leaves c.reff unset (only rolling resistance reads it). */
-template <int DIM = 3>
-inline void contact_kinematics(const double *xi, const double *xj, const double *vi,
-                               const double *vj, const double *wi, const double *wj, double radi,
-                               double radj, double mi, double mj, double r, Contact &c,
-                               bool want_reff = true)
-{
-  const double rinv = 1.0 / r;
-  c.n[0] = (xi[0] - xj[0]) * rinv;
-  c.n[1] = (xi[1] - xj[1]) * rinv;
-  c.n[2] = (DIM == 3) ? (xi[2] - xj[2]) * rinv : 0.0;
-  c.r = r;
-  c.delta = radi + radj - r;
-  // the contact point sits at the middle of the overlap (or gap)
-  c.li = radi - 0.5 * c.delta;
-  c.lj = radj - 0.5 * c.delta;
+  template <int DIM = 3>
+  inline void contact_kinematics(const double *xi, const double *xj, const double *vi,
+                                 const double *vj, const double *wi, const double *wj, double radi,
+                                 double radj, double mi, double mj, double r, Contact &c,
+                                 bool want_reff = true)
+  {
+    const double rinv = 1.0 / r;
+    c.n[0] = (xi[0] - xj[0]) * rinv;
+    c.n[1] = (xi[1] - xj[1]) * rinv;
+    c.n[2] = (DIM == 3) ? (xi[2] - xj[2]) * rinv : 0.0;
+    c.r = r;
+    c.delta = radi + radj - r;
+    // the contact point sits at the middle of the overlap (or gap)
+    c.li = radi - 0.5 * c.delta;
+    c.lj = radj - 0.5 * c.delta;
 
-  const double vr0 = vi[0] - vj[0], vr1 = vi[1] - vj[1];
-  c.vr[0] = vr0;
-  c.vr[1] = vr1;
-  if (DIM == 3) {
-    const double vr2 = vi[2] - vj[2];
-    c.vr[2] = vr2;
-    c.vn = vr0 * c.n[0] + vr1 * c.n[1] + vr2 * c.n[2];
-    // rotation adds -(li w_i + lj w_j) x n at the contact point
-    const double w0 = c.li * wi[0] + c.lj * wj[0];
-    const double w1 = c.li * wi[1] + c.lj * wj[1];
-    const double w2 = c.li * wi[2] + c.lj * wj[2];
-    c.vt[0] = vr0 - c.vn * c.n[0] - (w1 * c.n[2] - w2 * c.n[1]);
-    c.vt[1] = vr1 - c.vn * c.n[1] - (w2 * c.n[0] - w0 * c.n[2]);
-    c.vt[2] = vr2 - c.vn * c.n[2] - (w0 * c.n[1] - w1 * c.n[0]);
-    c.wr[0] = wi[0] - wj[0];
-    c.wr[1] = wi[1] - wj[1];
-    c.wr[2] = wi[2] - wj[2];
-  } else {
-    c.vr[2] = 0.0;
-    c.vn = vr0 * c.n[0] + vr1 * c.n[1];
-    // the 3D expressions with n[2] = w0 = w1 = 0
-    const double w2 = c.li * wi[2] + c.lj * wj[2];
-    c.vt[0] = vr0 - c.vn * c.n[0] + w2 * c.n[1];
-    c.vt[1] = vr1 - c.vn * c.n[1] - w2 * c.n[0];
-    c.vt[2] = 0.0;
-    c.wr[0] = c.wr[1] = 0.0;
-    c.wr[2] = wi[2] - wj[2];
+    const double vr0 = vi[0] - vj[0], vr1 = vi[1] - vj[1];
+    c.vr[0] = vr0;
+    c.vr[1] = vr1;
+    if (DIM == 3) {
+      const double vr2 = vi[2] - vj[2];
+      c.vr[2] = vr2;
+      c.vn = vr0 * c.n[0] + vr1 * c.n[1] + vr2 * c.n[2];
+      // rotation adds -(li w_i + lj w_j) x n at the contact point
+      const double w0 = c.li * wi[0] + c.lj * wj[0];
+      const double w1 = c.li * wi[1] + c.lj * wj[1];
+      const double w2 = c.li * wi[2] + c.lj * wj[2];
+      c.vt[0] = vr0 - c.vn * c.n[0] - (w1 * c.n[2] - w2 * c.n[1]);
+      c.vt[1] = vr1 - c.vn * c.n[1] - (w2 * c.n[0] - w0 * c.n[2]);
+      c.vt[2] = vr2 - c.vn * c.n[2] - (w0 * c.n[1] - w1 * c.n[0]);
+      c.wr[0] = wi[0] - wj[0];
+      c.wr[1] = wi[1] - wj[1];
+      c.wr[2] = wi[2] - wj[2];
+    } else {
+      c.vr[2] = 0.0;
+      c.vn = vr0 * c.n[0] + vr1 * c.n[1];
+      // the 3D expressions with n[2] = w0 = w1 = 0
+      const double w2 = c.li * wi[2] + c.lj * wj[2];
+      c.vt[0] = vr0 - c.vn * c.n[0] + w2 * c.n[1];
+      c.vt[1] = vr1 - c.vn * c.n[1] - w2 * c.n[0];
+      c.vt[2] = 0.0;
+      c.wr[0] = c.wr[1] = 0.0;
+      c.wr[2] = wi[2] - wj[2];
+    }
+
+    c.meff = (mi > 0.0 && mj > 0.0) ? mi * mj / (mi + mj) : (mi > 0.0 ? mi : mj);
+    if (want_reff) c.reff = radi * radj / (radi + radj);
   }
 
-  c.meff = (mi > 0.0 && mj > 0.0) ? mi * mj / (mi + mj) : (mi > 0.0 ? mi : mj);
-  if (want_reff) c.reff = radi * radj / (radi + radj);
-}
-
-/* A tangential force at the contact point both pushes a disc (sphere) and turns it: per unit
+  /* A tangential force at the contact point both pushes a disc (sphere) and turns it: per unit
    1/m its compliance is 1/m + l^2/I = 3/m for a disc (I = m r^2/2, l = r) and 3.5/m for a
    sphere (I = 2 m r^2/5).  A tangential spring or dashpot therefore acts on the mass m over
    this factor, which sets its stable time step. */
-inline double rotation_factor(int dimension)
-{
-  return (dimension == 2) ? 3.0 : 3.5;
-}
+  inline double rotation_factor(int dimension)
+  {
+    return (dimension == 2) ? 3.0 : 3.5;
+  }
 
-/* Keep a 3D history vector in the tangent plane as the contact rotates, with
+  /* Keep a 3D history vector in the tangent plane as the contact rotates, with
    its length unchanged (frame-indifferent spring). */
-inline void rotate_into_plane(double *h, const double *n)
-{
-  const double hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
-  if (hn == 0.0) return;
-  const double before = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-  h[0] -= hn * n[0];
-  h[1] -= hn * n[1];
-  h[2] -= hn * n[2];
-  const double after = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-  if (after > 0.0) {
-    const double s = std::sqrt(before / after);
-    h[0] *= s;
-    h[1] *= s;
-    h[2] *= s;
+  inline void rotate_into_plane(double *h, const double *n)
+  {
+    const double hn = h[0] * n[0] + h[1] * n[1] + h[2] * n[2];
+    if (hn == 0.0) return;
+    const double before = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    h[0] -= hn * n[0];
+    h[1] -= hn * n[1];
+    h[2] -= hn * n[2];
+    const double after = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    if (after > 0.0) {
+      const double s = std::sqrt(before / after);
+      h[0] *= s;
+      h[1] *= s;
+      h[2] *= s;
+    }
   }
-}
 
-/* Torque contributions of a tangential force ft applied at the contact:
+  /* Torque contributions of a tangential force ft applied at the contact:
    ti = -li (n x ft), tj = -lj (n x ft). */
-template <int DIM = 3>
-inline void contact_torques(const Contact &c, const double *ft, double *ti, double *tj)
-{
-  if (DIM == 2) {    // only the z parts: n x ft = (0, 0, n0 ft1 - n1 ft0)
+  template <int DIM = 3>
+  inline void contact_torques(const Contact &c, const double *ft, double *ti, double *tj)
+  {
+    if (DIM == 2) {    // only the z parts: n x ft = (0, 0, n0 ft1 - n1 ft0)
+      const double nx2 = c.n[0] * ft[1] - c.n[1] * ft[0];
+      ti[0] = ti[1] = tj[0] = tj[1] = 0.0;
+      ti[2] = -c.li * nx2;
+      tj[2] = -c.lj * nx2;
+      return;
+    }
+    const double nx0 = c.n[1] * ft[2] - c.n[2] * ft[1];
+    const double nx1 = c.n[2] * ft[0] - c.n[0] * ft[2];
     const double nx2 = c.n[0] * ft[1] - c.n[1] * ft[0];
-    ti[0] = ti[1] = tj[0] = tj[1] = 0.0;
+    ti[0] = -c.li * nx0;
+    ti[1] = -c.li * nx1;
     ti[2] = -c.li * nx2;
+    tj[0] = -c.lj * nx0;
+    tj[1] = -c.lj * nx1;
     tj[2] = -c.lj * nx2;
-    return;
   }
-  const double nx0 = c.n[1] * ft[2] - c.n[2] * ft[1];
-  const double nx1 = c.n[2] * ft[0] - c.n[0] * ft[2];
-  const double nx2 = c.n[0] * ft[1] - c.n[1] * ft[0];
-  ti[0] = -c.li * nx0;
-  ti[1] = -c.li * nx1;
-  ti[2] = -c.li * nx2;
-  tj[0] = -c.lj * nx0;
-  tj[1] = -c.lj * nx1;
-  tj[2] = -c.lj * nx2;
-}
 
-/* ----------------------------------------------------------------------
+  /* ----------------------------------------------------------------------
    Frictional-cohesive cover law (pair saltdem/cohesive)
 ------------------------------------------------------------------------- */
 
-struct CohesiveParams {
-  double kn;        // normal stiffness (force/length)
-  double kt;        // tangential stiffness (force/length)
-  double mu;        // contact friction coefficient
-  double coh;       // contact cohesion (force)
-  double tens;      // tensile strength (force): peak of the attraction
-  double range;     // gap at which the attraction has softened to zero (length)
-  double zeta_n;    // normal damping ratio (fraction of critical)
-  double zeta_t;    // tangential damping ratio
-  double kr;        // rolling stiffness (force/length on the rolling displacement); 0: none
-  double mur;       // rolling friction coefficient: |fr| <= mur * Fn
-  double cn, ct;    // derived (cohesive_derive): damping per sqrt(reduced mass), 2 zeta sqrt(k)
-};
+  struct CohesiveParams {
+    double kn;        // normal stiffness (force/length)
+    double kt;        // tangential stiffness (force/length)
+    double mu;        // contact friction coefficient
+    double coh;       // contact cohesion (force)
+    double tens;      // tensile strength (force): peak of the attraction
+    double range;     // gap at which the attraction has softened to zero (length)
+    double zeta_n;    // normal damping ratio (fraction of critical)
+    double zeta_t;    // tangential damping ratio
+    double kr;        // rolling stiffness (force/length on the rolling displacement); 0: none
+    double mur;       // rolling friction coefficient: |fr| <= mur * Fn
+    double cn, ct;    // derived (cohesive_derive): damping per sqrt(reduced mass), 2 zeta sqrt(k)
+  };
 
-/* the derived members of p, from the others.  ftm2v: the unit system's force x time / mass
+  /* the derived members of p, from the others.  ftm2v: the unit system's force x time / mass
    to velocity (LAMMPS's force->ftm2v; 1 in SI): a critical dashpot is 2 sqrt(k m / ftm2v) */
-inline void cohesive_derive(CohesiveParams &p, double ftm2v)
-{
-  p.cn = 2.0 * p.zeta_n * std::sqrt(p.kn / ftm2v);
-  p.ct = 2.0 * p.zeta_t * std::sqrt(p.kt / ftm2v);
-}
+  inline void cohesive_derive(CohesiveParams &p, double ftm2v)
+  {
+    p.cn = 2.0 * p.zeta_n * std::sqrt(p.kn / ftm2v);
+    p.ct = 2.0 * p.zeta_t * std::sqrt(p.kt / ftm2v);
+  }
 
-/* Elastic + cohesive normal force (positive = repulsive) at overlap delta.
+  /* Elastic + cohesive normal force (positive = repulsive) at overlap delta.
    Touching: kn*delta.  In a gap g = -delta the attraction rises elastically
    (slope kn) to the tensile strength at g_p = tens/kn, then softens linearly
    to zero at g = range.  It is a function of the gap only: reversible, no
    bond, re-forms on every new contact. */
-inline double cohesive_normal(const CohesiveParams &p, double delta)
-{
-  if (delta >= 0.0) return p.kn * delta;
-  const double g = -delta;
-  if (g >= p.range) return 0.0;
-  const double gp = p.tens / p.kn;
-  if (g <= gp) return -p.kn * g;
-  return -p.tens * (p.range - g) / (p.range - gp);
-}
+  inline double cohesive_normal(const CohesiveParams &p, double delta)
+  {
+    if (delta >= 0.0) return p.kn * delta;
+    const double g = -delta;
+    if (g >= p.range) return 0.0;
+    const double gp = p.tens / p.kn;
+    if (g <= gp) return -p.kn * g;
+    return -p.tens * (p.range - g) / (p.range - gp);
+  }
 
-/* Potential energy of cohesive_normal, zero at and beyond the range. */
-inline double cohesive_normal_energy(const CohesiveParams &p, double delta)
-{
-  const double gp = p.tens / p.kn;
-  const double e_range = 0.5 * p.tens * p.range;    // work to pull apart from touching
-  if (delta >= 0.0) return 0.5 * p.kn * delta * delta - e_range;
-  const double g = -delta;
-  if (g >= p.range) return 0.0;
-  if (g <= gp) return 0.5 * p.kn * g * g - e_range;
-  const double a = p.range - g;
-  return -0.5 * p.tens * a * a / (p.range - gp);
-}
+  /* Potential energy of cohesive_normal, zero at and beyond the range. */
+  inline double cohesive_normal_energy(const CohesiveParams &p, double delta)
+  {
+    const double gp = p.tens / p.kn;
+    const double e_range = 0.5 * p.tens * p.range;    // work to pull apart from touching
+    if (delta >= 0.0) return 0.5 * p.kn * delta * delta - e_range;
+    const double g = -delta;
+    if (g >= p.range) return 0.0;
+    if (g <= gp) return 0.5 * p.kn * g * g - e_range;
+    const double a = p.range - g;
+    return -0.5 * p.tens * a * a / (p.range - gp);
+  }
 
-/* The cover law.  hist: 3 tangential (+3 rolling) values, kept while the
+  /* The cover law.  hist: 3 tangential (+3 rolling) values, kept while the
    discs touch.  f: force on i.  ti, tj: torques on i and j.  advance: move
    the history on (false during setup, as in LAMMPS's granular styles).
    evdwl: elastic energy stored in the contact (EVFLAG only).  Returns true
@@ -218,118 +233,118 @@ inline double cohesive_normal_energy(const CohesiveParams &p, double delta)
    turn with the contact by construction.  DIM 3: vectors, turned into the
    new tangent plane with their lengths kept (rotate_into_plane).  The two
    give the same forces. */
-template <int EVFLAG>
-inline void cohesive_tangent_2d(const CohesiveParams &p, const Contact &c, double *hist,
-                                bool rolling, double dt, bool advance, double gt, double fn_el,
-                                double *f, double *ti, double *tj, double &evdwl)
-{
-  const double t0 = -c.n[1], t1 = c.n[0];
-  const double vt = c.vt[0] * t0 + c.vt[1] * t1;
-  double &xi = hist[0];
-  if (advance) xi += vt * dt;
-  double ft = -p.kt * xi - gt * vt;
-  const double fmax = p.coh + p.mu * fn_el;
-  if (ft * ft > fmax * fmax) {
-    ft = std::copysign(fmax, ft);
-    if (p.kt > 0.0) xi = -(ft + gt * vt) / p.kt;
-  }
-  if (EVFLAG) evdwl += 0.5 * p.kt * xi * xi;
-  f[0] += ft * t0;
-  f[1] += ft * t1;
-  ti[0] = ti[1] = tj[0] = tj[1] = 0.0;
-  ti[2] = -c.li * ft;    // -l (n x ft)_z
-  tj[2] = -c.lj * ft;
-
-  if (rolling && p.kr > 0.0) {
-    double &psi = hist[3];
-    if (advance) psi += c.reff * c.wr[2] * dt;
-    double fr = -p.kr * psi;
-    const double frmax = p.mur * fn_el;
-    if (fr * fr > frmax * frmax) {
-      fr = std::copysign(frmax, fr);
-      psi = -fr / p.kr;
+  template <int EVFLAG>
+  inline void cohesive_tangent_2d(const CohesiveParams &p, const Contact &c, double *hist,
+                                  bool rolling, double dt, bool advance, double gt, double fn_el,
+                                  double *f, double *ti, double *tj, double &evdwl)
+  {
+    const double t0 = -c.n[1], t1 = c.n[0];
+    const double vt = c.vt[0] * t0 + c.vt[1] * t1;
+    double &xi = hist[0];
+    if (advance) xi += vt * dt;
+    double ft = -p.kt * xi - gt * vt;
+    const double fmax = p.coh + p.mu * fn_el;
+    if (ft * ft > fmax * fmax) {
+      ft = std::copysign(fmax, ft);
+      if (p.kt > 0.0) xi = -(ft + gt * vt) / p.kt;
     }
-    if (EVFLAG) evdwl += 0.5 * p.kr * psi * psi;
-    ti[2] += c.reff * fr;
-    tj[2] -= c.reff * fr;
-  }
-}
+    if (EVFLAG) evdwl += 0.5 * p.kt * xi * xi;
+    f[0] += ft * t0;
+    f[1] += ft * t1;
+    ti[0] = ti[1] = tj[0] = tj[1] = 0.0;
+    ti[2] = -c.li * ft;    // -l (n x ft)_z
+    tj[2] = -c.lj * ft;
 
-template <int EVFLAG>
-inline void cohesive_tangent_3d(const CohesiveParams &p, const Contact &c, double *hist,
-                                bool rolling, double dt, bool advance, double gt, double fn_el,
-                                double *f, double *ti, double *tj, double &evdwl)
-{
-  double *xi = hist;
-  rotate_into_plane(xi, c.n);
-  if (advance)
-    for (int k = 0; k < 3; k++) xi[k] += c.vt[k] * dt;
-  double ft[3];
-  for (int k = 0; k < 3; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
-  const double fmax = p.coh + p.mu * fn_el;
-  const double ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
-  if (ft2 > fmax * fmax) {
-    const double s = fmax / std::sqrt(ft2);
-    for (int k = 0; k < 3; k++) {
-      ft[k] *= s;
-      if (p.kt > 0.0) xi[k] = -(ft[k] + gt * c.vt[k]) / p.kt;
+    if (rolling && p.kr > 0.0) {
+      double &psi = hist[3];
+      if (advance) psi += c.reff * c.wr[2] * dt;
+      double fr = -p.kr * psi;
+      const double frmax = p.mur * fn_el;
+      if (fr * fr > frmax * frmax) {
+        fr = std::copysign(frmax, fr);
+        psi = -fr / p.kr;
+      }
+      if (EVFLAG) evdwl += 0.5 * p.kr * psi * psi;
+      ti[2] += c.reff * fr;
+      tj[2] -= c.reff * fr;
     }
   }
-  if (EVFLAG) evdwl += 0.5 * p.kt * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-  for (int k = 0; k < 3; k++) f[k] += ft[k];
-  contact_torques<3>(c, ft, ti, tj);
 
-  if (rolling && p.kr > 0.0) {
-    double *psi = hist + 3;
-    rotate_into_plane(psi, c.n);
-    const double vr[3] = {c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]),
-                          c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]),
-                          c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0])};
+  template <int EVFLAG>
+  inline void cohesive_tangent_3d(const CohesiveParams &p, const Contact &c, double *hist,
+                                  bool rolling, double dt, bool advance, double gt, double fn_el,
+                                  double *f, double *ti, double *tj, double &evdwl)
+  {
+    double *xi = hist;
+    rotate_into_plane(xi, c.n);
     if (advance)
-      for (int k = 0; k < 3; k++) psi[k] += vr[k] * dt;
-    double fr[3];
-    for (int k = 0; k < 3; k++) fr[k] = -p.kr * psi[k];
-    const double frmax = p.mur * fn_el;
-    const double fr2 = fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2];
-    if (fr2 > frmax * frmax) {
-      const double s = frmax / std::sqrt(fr2);
+      for (int k = 0; k < 3; k++) xi[k] += c.vt[k] * dt;
+    double ft[3];
+    for (int k = 0; k < 3; k++) ft[k] = -p.kt * xi[k] - gt * c.vt[k];
+    const double fmax = p.coh + p.mu * fn_el;
+    const double ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
+    if (ft2 > fmax * fmax) {
+      const double s = fmax / std::sqrt(ft2);
       for (int k = 0; k < 3; k++) {
-        fr[k] *= s;
-        psi[k] = -fr[k] / p.kr;
+        ft[k] *= s;
+        if (p.kt > 0.0) xi[k] = -(ft[k] + gt * c.vt[k]) / p.kt;
       }
     }
-    if (EVFLAG) evdwl += 0.5 * p.kr * (psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]);
-    const double tr[3] = {c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]),
-                          c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]),
-                          c.reff * (c.n[0] * fr[1] - c.n[1] * fr[0])};
-    for (int k = 0; k < 3; k++) {
-      ti[k] += tr[k];
-      tj[k] -= tr[k];
+    if (EVFLAG) evdwl += 0.5 * p.kt * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+    for (int k = 0; k < 3; k++) f[k] += ft[k];
+    contact_torques<3>(c, ft, ti, tj);
+
+    if (rolling && p.kr > 0.0) {
+      double *psi = hist + 3;
+      rotate_into_plane(psi, c.n);
+      const double vr[3] = {c.reff * (c.wr[1] * c.n[2] - c.wr[2] * c.n[1]),
+                            c.reff * (c.wr[2] * c.n[0] - c.wr[0] * c.n[2]),
+                            c.reff * (c.wr[0] * c.n[1] - c.wr[1] * c.n[0])};
+      if (advance)
+        for (int k = 0; k < 3; k++) psi[k] += vr[k] * dt;
+      double fr[3];
+      for (int k = 0; k < 3; k++) fr[k] = -p.kr * psi[k];
+      const double frmax = p.mur * fn_el;
+      const double fr2 = fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2];
+      if (fr2 > frmax * frmax) {
+        const double s = frmax / std::sqrt(fr2);
+        for (int k = 0; k < 3; k++) {
+          fr[k] *= s;
+          psi[k] = -fr[k] / p.kr;
+        }
+      }
+      if (EVFLAG) evdwl += 0.5 * p.kr * (psi[0] * psi[0] + psi[1] * psi[1] + psi[2] * psi[2]);
+      const double tr[3] = {c.reff * (c.n[1] * fr[2] - c.n[2] * fr[1]),
+                            c.reff * (c.n[2] * fr[0] - c.n[0] * fr[2]),
+                            c.reff * (c.n[0] * fr[1] - c.n[1] * fr[0])};
+      for (int k = 0; k < 3; k++) {
+        ti[k] += tr[k];
+        tj[k] -= tr[k];
+      }
     }
   }
-}
 
-template <int DIM = 3, int EVFLAG = 1>
-inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hist, bool rolling,
-                           double dt, bool advance, double *f, double *ti, double *tj,
-                           double &evdwl)
-{
-  // normal: elastic/cohesive + viscous damping (critical ratio zeta_n)
-  const double fn_el = cohesive_normal(p, c.delta);
-  const double sqm = std::sqrt(c.meff);
-  const double fn = fn_el - p.cn * sqm * c.vn;
-  if (EVFLAG) evdwl = cohesive_normal_energy(p, c.delta);
-  for (int k = 0; k < DIM; k++) f[k] = fn * c.n[k];
-  if (c.delta <= 0.0) return false;
-  const double gt = p.ct * sqm;
-  if (DIM == 2)
-    cohesive_tangent_2d<EVFLAG>(p, c, hist, rolling, dt, advance, gt, fn_el, f, ti, tj, evdwl);
-  else
-    cohesive_tangent_3d<EVFLAG>(p, c, hist, rolling, dt, advance, gt, fn_el, f, ti, tj, evdwl);
-  return true;
-}
+  template <int DIM = 3, int EVFLAG = 1>
+  inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hist, bool rolling,
+                             double dt, bool advance, double *f, double *ti, double *tj,
+                             double &evdwl)
+  {
+    // normal: elastic/cohesive + viscous damping (critical ratio zeta_n)
+    const double fn_el = cohesive_normal(p, c.delta);
+    const double sqm = std::sqrt(c.meff);
+    const double fn = fn_el - p.cn * sqm * c.vn;
+    if (EVFLAG) evdwl = cohesive_normal_energy(p, c.delta);
+    for (int k = 0; k < DIM; k++) f[k] = fn * c.n[k];
+    if (c.delta <= 0.0) return false;
+    const double gt = p.ct * sqm;
+    if (DIM == 2)
+      cohesive_tangent_2d<EVFLAG>(p, c, hist, rolling, dt, advance, gt, fn_el, f, ti, tj, evdwl);
+    else
+      cohesive_tangent_3d<EVFLAG>(p, c, hist, rolling, dt, advance, gt, fn_el, f, ti, tj, evdwl);
+    return true;
+  }
 
-/* ----------------------------------------------------------------------
+  /* ----------------------------------------------------------------------
    Viscous salt law (pair saltdem/viscous)
 
    Two forms, chosen per type pair:
@@ -347,76 +362,77 @@ inline bool cohesive_force(const CohesiveParams &p, const Contact &c, double *hi
      no-slip.
 ------------------------------------------------------------------------- */
 
-enum ViscousMode { VISCOUS_FLUID = 0, VISCOUS_CONTACT = 1 };
+  enum ViscousMode { VISCOUS_FLUID = 0, VISCOUS_CONTACT = 1 };
 
-/* the coefficients of one type pair; the viscosity eta itself is kept by the pair style
+  /* the coefficients of one type pair; the viscosity eta itself is kept by the pair style
    (one per type pair, which fix adapt changes) and enters only through the derived dashpots */
-struct ViscousParams {
-  int mode;         // VISCOUS_FLUID or VISCOUS_CONTACT
-  double kn;        // elastic normal stiffness (force/length)
-  double h;         // FLUID: smoothing length; the kernel reaches 2h
-  double K;         // FLUID: bulk modulus of the equation of state P = K (rho/rho0 - 1)
-  double cw;        // FLUID: |dW/dr| / r = cw (1 - r/2h)^3 (derived)
-  double ih2;       // FLUID: 1 / 2h (derived)
-  double kfac;      // FLUID: 2 eta * kernel constant (derived: eta, dimension, h)
-  double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
-  double ratio;     // CONTACT: tangential / normal dashpot coefficient
-  double gn, gt;    // CONTACT: dashpot coefficients (derived: calibration * eta)
-};
+  struct ViscousParams {
+    int mode;         // VISCOUS_FLUID or VISCOUS_CONTACT
+    double kn;        // elastic normal stiffness (force/length)
+    double h;         // FLUID: smoothing length; the kernel reaches 2h
+    double K;         // FLUID: bulk modulus of the equation of state P = K (rho/rho0 - 1)
+    double cw;        // FLUID: |dW/dr| / r = cw (1 - r/2h)^3 (derived)
+    double ih2;       // FLUID: 1 / 2h (derived)
+    double kfac;      // FLUID: 2 eta * kernel constant (derived: eta, dimension, h)
+    double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
+    double ratio;     // CONTACT: tangential / normal dashpot coefficient
+    double gn, gt;    // CONTACT: dashpot coefficients (derived: calibration * eta)
+  };
 
-/* FLUID: the equation of state P = K (rho / rho0 - 1): a fluid at its reference density
+  /* FLUID: the equation of state P = K (rho / rho0 - 1): a fluid at its reference density
    carries no pressure */
-inline double eos_pressure(double K, double rho, double rho0)
-{
-  return K * (rho / rho0 - 1.0);
-}
+  inline double eos_pressure(double K, double rho, double rho0)
+  {
+    return K * (rho / rho0 - 1.0);
+  }
 
-/* FLUID: the volume m / rho of a particle of mass m and density rho (0 without a density) */
-inline double particle_volume(double m, double rho)
-{
-  return (rho > 0.0) ? m / rho : 0.0;
-}
+  /* FLUID: the volume m / rho of a particle of mass m and density rho (0 without a density) */
+  inline double particle_volume(double m, double rho)
+  {
+    return (rho > 0.0) ? m / rho : 0.0;
+  }
 
-/* FLUID: the pressure term a = m P / rho^2 of a particle (eos_pressure written out in the
+  /* FLUID: the pressure term a = m P / rho^2 of a particle (eos_pressure written out in the
    order the scenes' trajectories were computed with); 0 without a reference density */
-inline double pressure_term(double m, double K, double rho, double rho0)
-{
-  return (rho0 > 0.0) ? m * K * (rho / rho0 - 1.0) / (rho * rho) : 0.0;
-}
+  inline double pressure_term(double m, double K, double rho, double rho0)
+  {
+    return (rho0 > 0.0) ? m * K * (rho / rho0 - 1.0) / (rho * rho) : 0.0;
+  }
 
-/* FLUID: the SPH pressure pair coefficient pc = m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) from the
+  /* FLUID: the SPH pressure pair coefficient pc = m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) from the
    pressure terms a = m P / rho^2 of particles i and j, where fi, fj say whether each carries
    a pressure (its own pair is FLUID with K > 0).  The boundary rule: a particle that carries
    none (a wall, the cover, a fluid with K = 0) mirrors its partner's, so the fluid's
    pressure pushes on it as on more fluid; two such particles exert none. */
-inline double pressure_pair(bool fi, bool fj, double mi, double mj, double ai, double aj)
-{
-  if (fi && fj) return mj * ai + mi * aj;
-  if (fi) return 2.0 * mj * ai;
-  if (fj) return 2.0 * mi * aj;
-  return 0.0;
-}
+  inline double pressure_pair(bool fi, bool fj, double mi, double mj, double ai, double aj)
+  {
+    if (fi && fj) return mj * ai + mi * aj;
+    if (fi) return 2.0 * mj * ai;
+    if (fj) return 2.0 * mi * aj;
+    return 0.0;
+  }
 
-/* Wendland C2 kernel W(q = r/h) = A (1 - q/2)^4 (1 + 2q) on r < 2h, with
+  /* Wendland C2 kernel W(q = r/h) = A (1 - q/2)^4 (1 + 2q) on r < 2h, with
    A = 7/(4 pi h^2) in 2D and 21/(16 pi h^3) in 3D */
-inline double wendland_c2(int dimension, double h, double r)
-{
-  const double q = r / h;
-  if (q >= 2.0) return 0.0;
-  const double s = 1.0 - 0.5 * q;
-  const double a = (dimension == 2) ? 7.0 / (4.0 * M_PI * h * h) : 21.0 / (16.0 * M_PI * h * h * h);
-  return a * s * s * s * s * (1.0 + 2.0 * q);
-}
+  inline double wendland_c2(int dimension, double h, double r)
+  {
+    const double q = r / h;
+    if (q >= 2.0) return 0.0;
+    const double s = 1.0 - 0.5 * q;
+    const double a = (dimension == 2) ? 7.0 / (4.0 * M_PI * h * h)
+                                      : 21.0 / (16.0 * M_PI * h * h * h);
+    return a * s * s * s * s * (1.0 + 2.0 * q);
+  }
 
-/* and its |dW/dr| / r = C (1 - r/2h)^3 with C = 35/(4 pi h^4) in 2D and
+  /* and its |dW/dr| / r = C (1 - r/2h)^3 with C = 35/(4 pi h^4) in 2D and
    105/(16 pi h^5) in 3D */
-inline double wendland_c2_grad_over_r(int dimension, double h)
-{
-  return (dimension == 2) ? 35.0 / (4.0 * M_PI * h * h * h * h)
-                          : 105.0 / (16.0 * M_PI * h * h * h * h * h);
-}
+  inline double wendland_c2_grad_over_r(int dimension, double h)
+  {
+    return (dimension == 2) ? 35.0 / (4.0 * M_PI * h * h * h * h)
+                            : 105.0 / (16.0 * M_PI * h * h * h * h * h);
+  }
 
-/* FLUID: the Morris viscosity and the SPH pressure between particles of
+  /* FLUID: the Morris viscosity and the SPH pressure between particles of
    volumes voli, volj (m/rho) at d = x_i - x_j, r = |d|, relative velocity
    vr = v_i - v_j, radii summing to radsum; pc: the SPH pressure pair
    coefficient m_i m_j (P_i/rho_i^2 + P_j/rho_j^2).  No torque.  divw:
@@ -424,48 +440,49 @@ inline double wendland_c2_grad_over_r(int dimension, double h)
    d rho_i/dt = sum_j m_j v_ij . grad_i W_ij.  Written on d rather than the
    unit normal: no division unless an elastic core acts.  Returns true while
    the discs touch. */
-template <int DIM = 3, int EVFLAG = 1>
-inline bool viscous_fluid_force(const ViscousParams &p, const double *d, const double *vr,
-                                double r, double radsum, double voli, double volj, double pc,
-                                double *f, double &evdwl, double &divw)
-{
-  const double delta = radsum - r;
-  const bool touching = delta > 0.0;
-  if (EVFLAG) evdwl = touching ? 0.5 * p.kn * delta * delta : 0.0;
-  const double s = 1.0 - r * p.ih2;
-  const double s3 = (s > 0.0) ? s * s * s : 0.0;
-  const double g = p.kfac * voli * volj * s3;    // Morris viscosity
-  // grad_i W = -cw s^3 d; pressure -pc grad_i W, repulsive for P > 0; the core kn delta d/r
-  const double cws3 = p.cw * s3;
-  const double a = pc * cws3 + ((touching && p.kn > 0.0) ? p.kn * delta / r : 0.0);
-  double vd = 0.0;
-  for (int k = 0; k < DIM; k++) {
-    f[k] = a * d[k] - g * vr[k];
-    vd += vr[k] * d[k];
+  template <int DIM = 3, int EVFLAG = 1>
+  inline bool viscous_fluid_force(const ViscousParams &p, const double *d, const double *vr,
+                                  double r, double radsum, double voli, double volj, double pc,
+                                  double *f, double &evdwl, double &divw)
+  {
+    const double delta = radsum - r;
+    const bool touching = delta > 0.0;
+    if (EVFLAG) evdwl = touching ? 0.5 * p.kn * delta * delta : 0.0;
+    const double s = 1.0 - r * p.ih2;
+    const double s3 = (s > 0.0) ? s * s * s : 0.0;
+    const double g = p.kfac * voli * volj * s3;    // Morris viscosity
+    // grad_i W = -cw s^3 d; pressure -pc grad_i W, repulsive for P > 0; the core kn delta d/r
+    const double cws3 = p.cw * s3;
+    const double a = pc * cws3 + ((touching && p.kn > 0.0) ? p.kn * delta / r : 0.0);
+    double vd = 0.0;
+    for (int k = 0; k < DIM; k++) {
+      f[k] = a * d[k] - g * vr[k];
+      vd += vr[k] * d[k];
+    }
+    divw = -cws3 * vd;
+    return touching;
   }
-  divw = -cws3 * vd;
-  return touching;
-}
 
-/* CONTACT: elastic repulsion and dashpots at the contact point (full
+  /* CONTACT: elastic repulsion and dashpots at the contact point (full
    contact_kinematics; reff is not read). */
-template <int DIM = 3, int EVFLAG = 1>
-inline bool viscous_contact_force(const ViscousParams &p, const Contact &c, double *f, double *ti,
-                                  double *tj, double &evdwl)
-{
-  const bool touching = c.delta > 0.0;
-  const double fel = touching ? p.kn * c.delta : 0.0;
-  if (EVFLAG) evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
-  const double fn = fel - p.gn * c.vn;
-  double ft[3] = {0.0, 0.0, 0.0};
-  for (int k = 0; k < DIM; k++) {
-    ft[k] = -p.gt * c.vt[k];
-    f[k] = fn * c.n[k] + ft[k];
+  template <int DIM = 3, int EVFLAG = 1>
+  inline bool viscous_contact_force(const ViscousParams &p, const Contact &c, double *f, double *ti,
+                                    double *tj, double &evdwl)
+  {
+    const bool touching = c.delta > 0.0;
+    const double fel = touching ? p.kn * c.delta : 0.0;
+    if (EVFLAG) evdwl = touching ? 0.5 * p.kn * c.delta * c.delta : 0.0;
+    const double fn = fel - p.gn * c.vn;
+    double ft[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < DIM; k++) {
+      ft[k] = -p.gt * c.vt[k];
+      f[k] = fn * c.n[k] + ft[k];
+    }
+    contact_torques<DIM>(c, ft, ti, tj);
+    return touching;
   }
-  contact_torques<DIM>(c, ft, ti, tj);
-  return touching;
-}
 
 }    // namespace SaltDEM
+}    // namespace LAMMPS_NS
 
 #endif

@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    saltdem/timestep F: sets the time step to F times the smallest stable
    limit of the SaltDEM pair styles (alone or in pair hybrid) for the
@@ -36,14 +50,16 @@ void SaltdemTimestep::command(int narg, char **arg)
   // positive number (zero or infinite: a coefficient or mass out of range) stops here
   const auto styles = PairSaltdem::saltdem_styles(lmp);
   if (styles.empty())
-    error->all(FLERR, "saltdem/timestep needs a SaltDEM pair style (saltdem/cohesive, "
+    error->all(FLERR,
+               "saltdem/timestep needs a SaltDEM pair style (saltdem/cohesive, "
                "saltdem/viscous; alone or in pair_style hybrid) with its coefficients set");
   // the coefficients of every type pair as the run's init_one() will make them (mixed,
   // derived): the limit is computed from those
   for (auto pair : styles) pair->init_coeffs();
   const auto lim = PairSaltdem::smallest_limit(lmp, "saltdem/timestep: ");
   if (!lim.pair)
-    error->all(FLERR, "saltdem/timestep: no stable limit applies (no integrated particles "
+    error->all(FLERR,
+               "saltdem/timestep: no stable limit applies (no integrated particles "
                "interact through a SaltDEM pair style yet, or its coefficients are not set): set "
                "the time step with 'timestep'");
   const double best = lim.dt;
@@ -52,7 +68,9 @@ void SaltdemTimestep::command(int narg, char **arg)
 
   const double dt = frac * best;
   if (comm->me == 0)
-    utils::logmesg(lmp, "saltdem/timestep: timestep {:.6g} = {} of the stable limit {:.6g} of "
-                   "pair style {} ({})\n", dt, frac, best, style, why);
+    utils::logmesg(lmp,
+                   "saltdem/timestep: timestep {:.6g} = {} of the stable limit {:.6g} of "
+                   "pair style {} ({})\n",
+                   dt, frac, best, style, why);
   input->one(fmt::format("timestep {:.17g}", dt));
 }

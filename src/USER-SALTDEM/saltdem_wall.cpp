@@ -1,5 +1,19 @@
 /* ----------------------------------------------------------------------
-   SaltDEM: discrete-element salt tectonics for LAMMPS.
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
 
    saltdem/wall: a straight line of touching wall discs, the building block
    of basements, fault faces and end walls for the motion fixes
@@ -25,7 +39,7 @@
 
 using namespace LAMMPS_NS;
 
-static constexpr double MAXWALL = 1e7;    // most discs one command makes
+static constexpr double MAXWALL = 1e7;               // most discs one command makes
 static constexpr double DEFAULT_DENSITY = 2200.0;    // kg/m^3 (units si only)
 
 static const char *usage = "saltdem/wall TYPE x0 y0 x1 y1 R [group NAME] [density RHO]";
@@ -52,7 +66,8 @@ void SaltdemWall::command(int narg, char **arg)
   int igroup = -1;
   double density = 0.0;
   for (int iarg = 6; iarg < narg; iarg += 2) {
-    if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, std::string("saltdem/wall ") + arg[iarg], error);
+    if (iarg + 2 > narg)
+      utils::missing_cmd_args(FLERR, std::string("saltdem/wall ") + arg[iarg], error);
     const std::string kw = arg[iarg];
     if (kw == "group") {
       igroup = group->find_or_create(arg[iarg + 1]);
@@ -65,9 +80,11 @@ void SaltdemWall::command(int narg, char **arg)
   // the default density is the scenes' rock, in kg/m^3: SI only
   if (density == 0.0) {
     if (strcmp(update->unit_style, "si") != 0)
-      error->all(FLERR, "saltdem/wall: the default density {} is in kg/m^3 (units si); under "
+      error->all(FLERR,
+                 "saltdem/wall: the default density {} is in kg/m^3 (units si); under "
                  "units {} give 'density RHO' in the deck's units (mass per area of a disc of "
-                 "unit thickness)", DEFAULT_DENSITY, update->unit_style);
+                 "unit thickness)",
+                 DEFAULT_DENSITY, update->unit_style);
     density = DEFAULT_DENSITY;
   }
 
@@ -76,8 +93,10 @@ void SaltdemWall::command(int narg, char **arg)
   const double *lo = domain->boxlo, *hi = domain->boxhi;
   auto check = [&](double px, double py) {
     if (px < lo[0] || px >= hi[0] || py < lo[1] || py >= hi[1])
-      error->all(FLERR, "saltdem/wall: end point ({}, {}) lies outside the box [{}, {}) x [{}, {}); "
-                 "enlarge the box with change_box first", px, py, lo[0], hi[0], lo[1], hi[1]);
+      error->all(FLERR,
+                 "saltdem/wall: end point ({}, {}) lies outside the box [{}, {}) x [{}, {}); "
+                 "enlarge the box with change_box first",
+                 px, py, lo[0], hi[0], lo[1], hi[1]);
   };
   check(x0, y0);
   check(x1, y1);
@@ -87,20 +106,26 @@ void SaltdemWall::command(int narg, char **arg)
   // span the box many times)
   const double extent = MAX(hi[0] - lo[0], hi[1] - lo[1]);
   if (r > extent)
-    error->all(FLERR, "saltdem/wall: radius R = {} exceeds the box size {}; give the radius in the "
-               "units of the box", r, extent);
+    error->all(FLERR,
+               "saltdem/wall: radius R = {} exceeds the box size {}; give the radius in the "
+               "units of the box",
+               r, extent);
 
   // the number of discs in 64 bits: a tiny radius on a long line must not wrap around
   const double len = sqrt((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0));
   const double nsegd = len > 0.0 ? ceil(len / (2.0 * r) - 1e-9) : 0.0;
   if (!(nsegd + 1.0 <= MAXWALL))
-    error->all(FLERR, "saltdem/wall: a line of length {} with discs of radius {} needs {:.4g} wall "
+    error->all(FLERR,
+               "saltdem/wall: a line of length {} with discs of radius {} needs {:.4g} wall "
                "discs, more than the {:.0f} one command makes; use a larger radius (the discs "
-               "must touch: spacing <= 2R)", len, r, nsegd + 1.0, MAXWALL);
+               "must touch: spacing <= 2R)",
+               len, r, nsegd + 1.0, MAXWALL);
   const bigint nseg = (bigint) nsegd;
   if ((bigint) atom->nlocal + nseg + 1 > MAXSMALLINT || atom->natoms + nseg + 1 > MAXTAGINT)
-    error->all(FLERR, "saltdem/wall: {} more wall discs would exceed the number of atoms LAMMPS "
-               "can hold; use a larger radius", nseg + 1);
+    error->all(FLERR,
+               "saltdem/wall: {} more wall discs would exceed the number of atoms LAMMPS "
+               "can hold; use a larger radius",
+               nseg + 1);
   // new atoms overwrite ghost atoms: clear them and the map first (as create_atoms does)
   if (atom->map_style != Atom::MAP_NONE) atom->map_clear();
   atom->nghost = 0;
@@ -128,7 +153,8 @@ void SaltdemWall::command(int narg, char **arg)
   // every disc of the line lies in the box, so some rank owns it: never fewer, never none
   const bigint made = atom->natoms - natoms_previous;
   if (made != nseg + 1)
-    error->all(FLERR, "saltdem/wall: made {} of the {} wall discs from ({}, {}) to ({}, {}) (the "
+    error->all(FLERR,
+               "saltdem/wall: made {} of the {} wall discs from ({}, {}) to ({}, {}) (the "
                "others fell outside every sub-domain); move the end points inside the box",
                made, nseg + 1, x0, y0, x1, y1);
   if (atom->tag_enable) atom->tag_extend();

@@ -1,0 +1,111 @@
+"""LAMMPS's rules for the package's source files (doc/src/Modify_style.rst of the LAMMPS source):
+licence and author header in every file, style headers that include only their base class,
+no OpenMP code outside the *_omp files (those are built with the OPENMP package only), and the
+files formatted with LAMMPS's .clang-format (src/.clang-format)."""
+import pathlib
+import re
+import shutil
+import subprocess
+
+import pytest
+
+from lmprun import ROOT
+
+PKG = ROOT / "src" / "USER-SALTDEM"
+
+
+def package_files():
+    """The package's tracked source files (files in progress, not yet in git, are left out)."""
+    out = subprocess.run(["git", "ls-files", "src/USER-SALTDEM"], cwd=ROOT, capture_output=True,
+                         text=True, check=True).stdout.split()
+    files = [ROOT / f for f in out if f.endswith((".h", ".cpp"))]
+    assert len(files) > 20, files
+    return files
+
+
+STYLE = re.compile(r"^(Pair|Fix|Command|Compute)Style\(", re.M)
+
+
+def test_licence_and_author_header():
+    for f in package_files():
+        head = f.read_text()[:1500]
+        assert "LAMMPS development team: developers@lammps.org" in head, f.name
+        assert "GNU General Public License" in head, f.name
+        assert "Contributing author" in head, f.name
+
+
+def test_style_headers_include_only_their_base_class():
+    """A style header includes the header of its base class(es) and nothing else, uses no
+    'using' statements, and declares no law or loop bodies (those live in saltdem_pair_loop.h,
+    which only .cpp files include)."""
+    seen = 0
+    for f in package_files():
+        if f.suffix != ".h":
+            continue
+        text = f.read_text()
+        if not STYLE.search(text):
+            continue
+        seen += 1
+        bases = re.findall(r"class \w+ : (.+?) \{", text.replace("\n", " "))
+        assert bases, f.name
+        includes = re.findall(r'^#include [<"](.+?)[">]', text, re.M)
+        base_headers = {
+            "Pair": "pair.h", "Fix": "fix.h", "Command": "command.h",
+            "PairSaltdem": "pair_saltdem.h", "PairSaltdemCohesive": "pair_saltdem_cohesive.h",
+            "PairSaltdemViscous": "pair_saltdem_viscous.h", "PairSaltdemOMP": "pair_saltdem_omp.h",
+            "FixSaltdemMotion": "fix_saltdem_motion.h", "FixSaltdemNVE": "fix_saltdem_nve.h"}
+        want = {base_headers[b.split()[-1]] for b in bases[0].split(",")}
+        assert set(includes) == want, (f.name, includes, want)
+        assert not re.search(r"^\s*using ", text, re.M), f.name
+    assert seen >= 14
+    # the base class headers the styles include follow the same rule
+    for name, allowed in [("pair_saltdem.h", {"pair.h"}), ("pair_saltdem_omp.h", {"thr_omp.h"}),
+                          ("fix_saltdem_motion.h", {"fix.h"})]:
+        includes = re.findall(r'^#include [<"](.+?)[">]', (PKG / name).read_text(), re.M)
+        assert set(includes) == allowed, (name, includes)
+    loop = (PKG / "saltdem_pair_loop.h").read_text()
+    assert "PairSaltdem::loop(" in loop and "PairSaltdemCohesive::law(" in loop
+    for f in package_files():
+        if f.suffix == ".h" and f.name != "saltdem_pair_loop.h":
+            assert '#include "saltdem_pair_loop.h"' not in f.read_text(), f.name
+
+
+OMP = re.compile(r"#pragma omp|[<\"]omp\.h[>\"]|omp_compat\.h|_OPENMP|comm->nthreads|Suffix::OMP|"
+                 r"\"thr_omp\.h\"|\bThrOMP\b")
+
+
+def test_openmp_code_only_in_omp_files():
+    """The OpenMP variants have their own *_omp.{h,cpp} (built with the OPENMP package only),
+    and every line of OpenMP code is there: thread bounds, per-thread sums, pragmas."""
+    omp = [f for f in package_files() if f.stem.endswith("_omp")]
+    assert {f.name for f in omp} >= {
+        "pair_saltdem_cohesive_omp.h", "pair_saltdem_cohesive_omp.cpp",
+        "pair_saltdem_viscous_omp.h", "pair_saltdem_viscous_omp.cpp", "fix_saltdem_nve_omp.h",
+        "fix_saltdem_nve_omp.cpp", "pair_saltdem_omp.h"}
+    for f in package_files():
+        if f.stem.endswith("_omp"):
+            continue
+        bad = [line for line in f.read_text().splitlines() if OMP.search(line)]
+        assert not bad, (f.name, bad)
+
+
+FORMATTED_WITH = "14"    # the clang-format major version the files were formatted with
+
+
+def test_clang_format():
+    """The files are formatted with LAMMPS's .clang-format (src/.clang-format, a copy of the
+    LAMMPS source's src/.clang-format).  Other clang-format versions format some constructs
+    differently: the check runs with the version the files were formatted with."""
+    exe = shutil.which("clang-format")
+    if exe is None:
+        pytest.skip("clang-format is not installed")
+    version = re.search(r"version (\d+)", subprocess.run([exe, "--version"], capture_output=True,
+                                                          text=True).stdout)
+    if not version or version.group(1) != FORMATTED_WITH:
+        pytest.skip(f"clang-format {version.group(1) if version else '?'}: the files were "
+                    f"formatted with version {FORMATTED_WITH}")
+    assert (ROOT / "src" / ".clang-format").read_text().startswith("---\nLanguage:")
+    files = [str(f) for f in package_files()]
+    r = subprocess.run([exe, "--dry-run", "--Werror", *files], cwd=ROOT, capture_output=True,
+                       text=True)
+    assert r.returncode == 0, r.stderr[-3000:]

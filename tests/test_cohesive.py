@@ -646,10 +646,10 @@ def limit_in(line):
 
 @pytest.mark.parametrize("np", [1, 2])
 def test_error_timestep_names_limit_kn(lmp, np):
-    """kn dominates (kn > 3 kt): limit 0.2 sqrt(m/kn)."""
+    """kn dominates (kn > 3 kt): limit dtfactor sqrt(m/kn), default dtfactor 0.6."""
     line = assert_error(run_err(lmp, np=np, dt=0.01), "saltdem/cohesive", "timestep 0.01",
                         "kn = 1e+08", "types 1 1")
-    assert limit_in(line) == pytest.approx(0.2 * math.sqrt(M1 / 1e8), rel=1e-5)
+    assert limit_in(line) == pytest.approx(0.6 * math.sqrt(M1 / 1e8), rel=1e-5)
 
 
 def test_error_timestep_names_limit_kt(lmp):
@@ -661,21 +661,21 @@ def test_error_timestep_names_limit_kt(lmp):
 
 
 def test_timestep_just_below_limit_runs(lmp):
-    check_ok(run_err(lmp, dt=0.99 * 0.2 * math.sqrt(M1 / 1e8)))
+    check_ok(run_err(lmp, dt=0.99 * 0.6 * math.sqrt(M1 / 1e8)))
 
 
 def test_stable_dt_uses_mixed_cross_coefficients(lmp):
     """Type 1: light, kn 1e8; type 2: 1000x heavier, kn 1e10; 1-2 mixed
     (springs in series: kn12 = 1.98e8).  The 1-2 contact with the light disc
-    limits dt to 0.2 sqrt(m1/kn12) = 5.9e-4 < 0.2 sqrt(m1/kn11) = 8.3e-4;
-    dt = 7e-4 must be refused."""
+    limits dt to 0.6 sqrt(m1/kn12) = 1.77e-3 < 0.6 sqrt(m1/kn11) = 2.5e-3;
+    dt = 2.1e-3 must be refused."""
     kn12 = 2 * 1e8 * 1e10 / (1e8 + 1e10)
     deck = ERRDECK.replace("${setline}",
                            "set type 1 density/disc 2200\nset type 2 density/disc 2200000")
     r = lmp(deck, astyle="sphere", ps="", integ="nve/sphere disc", pc1="1 1 1e8 0 0 0 0 0",
-            pc2="2 2 1e10 0 0 0 0 0", dt=7e-4)
+            pc2="2 2 1e10 0 0 0 0 0", dt=2.1e-3)
     line = assert_error(r, "saltdem/cohesive", "types 1 2")
-    assert limit_in(line) == pytest.approx(0.2 * math.sqrt(M1 / kn12), rel=1e-5)
+    assert limit_in(line) == pytest.approx(0.6 * math.sqrt(M1 / kn12), rel=1e-5)
 
 
 # ---------------------------------------------------------------------------

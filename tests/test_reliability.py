@@ -161,10 +161,10 @@ def limit_and_advice(line):
 # 1. stiff cases: stable, or stopped before the first step with the stable dt named
 # ---------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("factor", [100, 10000])
+@pytest.mark.parametrize("factor", [1000, 10000])
 def test_stiff_normal_stiffness(scenes, tmp_path, factor):
-    """kn of the cover and of the wall contacts x100 and x10,000 of the scene default (1e10
-    N/m) at the scene's dt: the run stops before its first step, naming the limit 0.2
+    """kn of the cover and of the wall contacts x1000 and x10,000 of the scene default (1e10
+    N/m) at the scene's dt: the run stops before its first step, naming the limit 0.6
     sqrt(S m_min / kn) (m_min the lightest cover disc, S its inertia factor) and a dt to use;
     at that dt the scene runs stably while the fault moves."""
     s, data = scenes("quick")
@@ -175,7 +175,7 @@ def test_stiff_normal_stiffness(scenes, tmp_path, factor):
     lim, use = limit_and_advice(line)
     atoms = read_data(data)
     m_min = atoms[atoms[:, 1] == 1][:, 6].min() * PRESETS["quick"]["S"]
-    assert lim == pytest.approx(0.2 * math.sqrt(m_min / kn), rel=1e-5)
+    assert lim == pytest.approx(0.6 * math.sqrt(m_min / kn), rel=1e-5)
     assert use < lim
     r = run_scene(tmp_path, s, data, FAULT + ENERGY + "run 4000\n", kn_cover=kn, kn_wall=kn,
                   dt=use)
@@ -210,26 +210,26 @@ def test_stiff_viscosity_x100(scenes, tmp_path):
     line = assert_error(r, "saltdem/viscous", "stable limit", "eta = 5e+10", "inertia")
     assert "Step" not in r.out
     need = float(re.search(r"S >= ([0-9.eE+-]+) times", line).group(1))
-    assert need > 50    # 100 x eta needs ~100 x the inertia
+    assert need > 15    # 100 x eta needs 100 x the inertia of the limit (dt 0.002 is 0.21 of it)
     S = math.ceil(need * 1.05) * PRESETS["paper"]["S"]
     r = run_scene(tmp_path, s, data, FAULT + ENERGY + "run 2000\n", eta=5e10, S=S, S_cover=S)
     assert_stable(r, data, natoms=len(read_data(data)))
 
 
-def test_stiff_smallest_radius_halved(tmp_path):
-    """The paper's discs with the smallest radius halved (3.125 m: 4x lighter discs) at the
-    paper's dt: the cover's tangential spring limit 0.2 sqrt(S m / (3 kt)) drops below
+def test_stiff_smallest_radius_eighth(tmp_path):
+    """The paper's discs with the smallest radius an eighth (0.78 m: 64x lighter discs) at the
+    paper's dt: the cover's tangential spring limit 0.6 sqrt(S m / (3 kt)) drops below
     0.002 s, the run stops before its first step naming it; at the named dt it runs stably
     (unsettled pack falling onto the basement while the fault moves)."""
     s = Scene("paper")
-    s.rmin = 0.5 * PRESETS["paper"]["rmin"]
+    s.rmin = 0.125 * PRESETS["paper"]["rmin"]
     data = s.write(tmp_path / "half.data")
     r = run_scene(tmp_path, s, data, FAULT + ENERGY + "run 3000\n", rmin=s.rmin)
     line = assert_error(r, "stable limit", "types 1")
     assert "Step" not in r.out
     lim, use = limit_and_advice(line)
     m = 2200 * math.pi * min(a[1] for a in s.atoms() if a[0] == 1) ** 2 * PRESETS["paper"]["S"]
-    assert lim == pytest.approx(0.2 * math.sqrt(m / 1.5e10), rel=1e-3)
+    assert lim == pytest.approx(0.6 * math.sqrt(m / 1.5e10), rel=1e-3)
     r = run_scene(tmp_path, s, data, FAULT + ENERGY + "run 3000\n", rmin=s.rmin, dt=use)
     check_ok(r)
     t = r.thermo()

@@ -165,7 +165,7 @@ def test_cohesive_collision_is_the_same_in_metal_and_si(lmp):
         e[units] = -r.thermo()["v_v1"][-1] / v
         ftm2v = 1.0 if units == "si" else 1.0 / 1.0364269e-4
         lim = float(r.out.split("of the stable limit ")[1].split()[0])
-        assert lim == pytest.approx(0.2 * math.sqrt(mass / (kn * ftm2v)), rel=1e-5)
+        assert lim == pytest.approx(0.6 * math.sqrt(mass / (kn * ftm2v)), rel=1e-5)
     zeta = 0.3
     assert e["si"] == pytest.approx(math.exp(-math.pi * zeta / math.sqrt(1 - zeta ** 2)), rel=0.05)
     assert e["metal"] == pytest.approx(e["si"], rel=1e-9)

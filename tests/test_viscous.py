@@ -673,19 +673,24 @@ def test_error(lmp, kw, words):
 
 def test_error_timestep_viscous_without_inertia(lmp):
     """The paper's dt without the inertia factor: the viscous limit
-    0.5 m h^2 / (7 c eta V) (V = disc/0.7, c the correction) = 1.65e-4 s is exceeded; the message
+    viscfactor 0.8 x 0.175 rho h^2 / (c eta) (c the correction) = 4.6e-4 s is exceeded; the message
     names eta, the types, the limit and the way out (inertia S)."""
-    line = assert_error(lmp(err_deck(fix="saltdem/nve")), "saltdem/viscous", "timestep 0.002",
-                        "eta = 5e+08", "types 1 1", "inertia")
+    # (the salt-wall contact pair 1 2 at a tenth of the viscosity, so that its own limit,
+    # 0.8 x 0.625 m / (eta (1 + 3 ratio)), stays above the fluid's)
+    pc = ("1 1 5e8 1e7 fluid 28 1e8", "2 2 5e8 5e9 contact 0.5",
+          "1 2 5e7 5e9 contact 0.5 tangential 0.5")
+    line = assert_error(lmp(err_deck(fix="saltdem/nve", pc=pc)), "saltdem/viscous",
+                        "timestep 0.002", "eta = 5e+08", "types 1 1", "inertia")
     lim = limit_in(line)
-    assert lim == pytest.approx(0.5 * 2200 * 0.7 * 28 ** 2 / (7 * CORRECTION * 5e8), rel=1e-4)
+    assert lim == pytest.approx(0.8 * 0.175 * 2200 * 28 ** 2 / (CORRECTION * 5e8), rel=1e-4)
     # inertia S scales the limit by S
-    line = assert_error(lmp(err_deck(fix="saltdem/nve inertia 5")), "eta = 5e+08", "inertia")
+    line = assert_error(lmp(err_deck(fix="saltdem/nve inertia 5", pc=pc, dt=0.005)),
+                        "eta = 5e+08", "types 1 1", "inertia")
     assert limit_in(line) == pytest.approx(5 * lim, rel=1e-4)
 
 
 def test_error_timestep_contact_and_sound(lmp):
-    """The contact dashpot limit 0.5 S m / (eta (1 + 3 ratio)) and the sound
+    """The contact dashpot limit 0.8 x 0.625 S m / (eta (1 + 3 ratio)) and the sound
     limit 0.25 h / c, c^2 = K / (0.7 S rho), each named when it binds."""
     m = 2200 * math.pi * 9.5 ** 2
     line = assert_error(lmp(err_deck(pc=pc2("2 2 5e8 5e9 contact 0.5")[:2] +

@@ -43,7 +43,7 @@ using namespace LAMMPS_NS;
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
     Pair(lmp), name(style_name), hist_id(history_id), fix_history(nullptr), fix_rebuild(nullptr),
     transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr), reach_abs(nullptr),
-    dtfactor(0.2), recheck(false)
+    dtfactor(DTFACTOR_DEFAULT), recheck(false)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;
@@ -59,7 +59,8 @@ PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *histor
 PairSaltdem::~PairSaltdem()
 {
   if (copymode) return;
-  if (fix_rebuild) modify->delete_fix(fix_rebuild->id);
+  // by ID: the fix may be gone already (unfix, or a plugin unloaded before this pair style)
+  if (modify->get_fix_by_id(rebuild_id())) modify->delete_fix(rebuild_id());
   if (history) {
     if (fix_history)
       modify->delete_fix(std::string(fix_history->id));
@@ -154,6 +155,7 @@ void PairSaltdem::init_style()
     fix_history->pair = this;
   }
 
+  fix_rebuild = dynamic_cast<FixSaltdemRebuild *>(modify->get_fix_by_id(rebuild_id()));
   if (fix_rebuild) fix_rebuild->range = 0.0;    // init_one() sets it again
 
   // largest radius per type sets the ghost cutoff
@@ -222,7 +224,8 @@ double PairSaltdem::stable_limit(std::string &why, bool cached)
       if (!owns(i, j)) continue;                                 // another sub-style's pair
       if (mmin[i] < 0.0 || mmin[j] < 0.0) continue;              // a type without atoms
       if (mmin[i] == DBL_MAX && mmin[j] == DBL_MAX) continue;    // walls only
-      pair_limit(i, j, MIN(mmin[i], mmin[j]), MIN(mv[i], mv[j]), best, why);
+      pair_limit(i, j, MIN(mmin[i], mmin[j]), MIN(mv[i], mv[j]),
+                 mmin[i] == DBL_MAX || mmin[j] == DBL_MAX, best, why);
     }
   return why.empty() ? 0.0 : best;
 }
@@ -361,7 +364,7 @@ double PairSaltdem::init_one(int i, int j)
   if (history && extra[i][j] > 0.0) {
     if (!fix_rebuild)
       fix_rebuild = dynamic_cast<FixSaltdemRebuild *>(
-          modify->add_fix(fmt::format("SALTDEM_REBUILD{} all SALTDEM_REBUILD", instance_me)));
+          modify->add_fix(fmt::format("{} all SALTDEM_REBUILD", rebuild_id())));
     fix_rebuild->range = MAX(fix_rebuild->range, extra[i][j]);
   }
   if (history && extra[i][j] >= neighbor->skin)

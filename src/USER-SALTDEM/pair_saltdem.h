@@ -122,11 +122,18 @@ class PairSaltdem : public Pair {
   int history, size_history;    // values kept per touching pair
   class FixNeighHistory *fix_history;
   class FixSaltdemRebuild *fix_rebuild;    // keeps pairs within the range listed
-  double *transfer_factor;                 // sign of each history value when (i,j) -> (j,i)
-  double *onerad, *maxrad;                 // largest radius per type (local, global)
-  double **extra;                          // interaction range beyond contact per type pair
-  double **reach_abs;                      // interaction range between centres, whatever the radii
-  double dtfactor;                         // stable dt = dtfactor * sqrt(m/k) (elastic)
+  std::string rebuild_id() const { return fmt::format("SALTDEM_REBUILD{}", instance_me); }
+  double *transfer_factor;    // sign of each history value when (i,j) -> (j,i)
+  double *onerad, *maxrad;    // largest radius per type (local, global)
+  double **extra;             // interaction range beyond contact per type pair
+  double **reach_abs;         // interaction range between centres, whatever the radii
+  double dtfactor;            // stable dt = dtfactor * sqrt(m/k) (elastic)
+  // dtfactor: default, and the largest accepted (the measured limit between cover discs is
+  // 0.77 sqrt(m/k); docs/performance.md, "Measured stability limits")
+  static constexpr double DTFACTOR_DEFAULT = 0.6, DTFACTOR_MAX = 0.75;
+  // the elastic limit's factor: dtfactor, twice it for a pair with a wall (a type without
+  // integrated atoms: the disc has one free side; measured >= 7.6x the disc-disc bound)
+  double elastic_factor(bool wall) const { return wall ? 2.0 * dtfactor : dtfactor; }
 
   virtual void allocate();
   virtual void allocate_params(int n) = 0;
@@ -139,8 +146,10 @@ class PairSaltdem : public Pair {
   virtual double range_abs(int, int) const { return 0.0; }    // range between centres
   // the stable limits of type pair i,j (i <= j, coefficients derived by init_one()) for the
   // smallest inertial mass m of its integrated atoms and the smallest inertial mass per disc
-  // (sphere) volume mv, each passed to consider_limit(lim, best, why, reason)
-  virtual void pair_limit(int i, int j, double m, double mv, double &best, std::string &why) = 0;
+  // (sphere) volume mv, each passed to consider_limit(lim, best, why, reason); wall: one of
+  // the types has no integrated atoms
+  virtual void pair_limit(int i, int j, double m, double mv, bool wall, double &best,
+                          std::string &why) = 0;
   // type pair i,j is computed by this style: set by its pair_coeff, or mixed from I,I and J,J
   // of this style where no other sub-style of pair hybrid was given it
   bool owns(int i, int j) const;

@@ -95,8 +95,9 @@ void PairSaltdemCohesive::settings(int narg, char **arg)
         utils::missing_cmd_args(FLERR, fmt::format("pair_style {} dtfactor", name), error);
       dtfactor =
           SaltDEM::numeric(FLERR, arg[iarg + 1], fmt::format("Pair style {}: dtfactor", name), lmp);
-      if (dtfactor <= 0.0 || dtfactor > 0.8)
-        error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, 0.8]", name, dtfactor);
+      if (dtfactor <= 0.0 || dtfactor > DTFACTOR_MAX)
+        error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, {}]", name, dtfactor,
+                   DTFACTOR_MAX);
       iarg += 2;
     } else
       error->all(FLERR, "Pair style {}: unknown keyword '{}' (expected: dtfactor)", name,
@@ -234,20 +235,23 @@ void PairSaltdemCohesive::init_style()
 }
 
 /* The stiffest oscillator of the pair: the normal spring, or the tangential spring that also
-   turns the disc (SaltDEM::rotation_factor).  Stable dt = dtfactor * sqrt(m_min / k), with
-   k in mass / time^2 (times ftm2v: 1 in SI). */
+   turns the disc (SaltDEM::rotation_factor).  Stable dt = C * sqrt(m_min / k), with k in
+   mass / time^2 (times ftm2v: 1 in SI), C = dtfactor (2 dtfactor against a wall). */
 
-void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, double &best, std::string &why)
+void PairSaltdemCohesive::pair_limit(int i, int j, double m, double, bool wall, double &best,
+                                     std::string &why)
 {
   const double rot = SaltDEM::rotation_factor(domain->dimension);
   const auto &p = params[i][j];
   const bool tang = rot * p.kt > p.kn;
   const double k = tang ? rot * p.kt : p.kn;
-  consider_limit(dtfactor * sqrt(m / (k * force->ftm2v)), best, why, [&] {
+  const double c = elastic_factor(wall);
+  consider_limit(c * sqrt(m / (k * force->ftm2v)), best, why, [&] {
     return fmt::format("{} = {:.6g} of types {} {} with the lightest mass {:.6g} "
-                       "(dt < {} * sqrt(m/{}))",
-                       tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, dtfactor,
-                       tang ? fmt::format("({}*kt)", rot) : "kn");
+                       "(dt < {} * sqrt(m/{}){})",
+                       tang ? "kt" : "kn", tang ? p.kt : p.kn, i, j, m, c,
+                       tang ? fmt::format("({}*kt)", rot) : "kn",
+                       wall ? ", 2 dtfactor against a wall" : "");
   });
 }
 

@@ -61,7 +61,7 @@ class PairSaltdemCohesive : public PairSaltdem {
   void mix(int, int) override;
   void derive(int, int) override;
   double range(int i, int j) const override;
-  void pair_limit(int, int, double, double, double &, std::string &) override;
+  void pair_limit(int, int, double, double, bool, double &, std::string &) override;
   int restart_version() const override { return 1; }
   std::vector<std::string> setting_names() const override { return {"dtfactor"}; }
   void pack_settings(double *v) const override { v[0] = dtfactor; }

@@ -49,7 +49,7 @@ PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
     apress(nullptr), scratch(nullptr), fix_density(nullptr), fluidself(nullptr), isfluid(nullptr),
     nmax(0), any_fluid(false), calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION),
-    viscfactor(0.5), calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
+    viscfactor(0.8), calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
   comm_forward = 2;
 }
@@ -132,8 +132,8 @@ void PairSaltdemViscous::settings(int narg, char **arg)
       if (v <= 0.0) error->all(FLERR, "Pair style {}: calibration {} must be > 0", name, v);
       calibration = v;
     } else if (strcmp(arg[iarg], "dtfactor") == 0) {
-      if (v <= 0.0 || v > 0.8)
-        error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, 0.8]", name, v);
+      if (v <= 0.0 || v > DTFACTOR_MAX)
+        error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, {}]", name, v, DTFACTOR_MAX);
       dtfactor = v;
     } else if (strcmp(arg[iarg], "viscfactor") == 0) {
       if (v <= 0.0 || v > 1.0)
@@ -460,34 +460,40 @@ void PairSaltdemViscous::limits_checked()
   calibration_checked = calibration;
 }
 
-/* Limits per type pair.  Elastic: dtfactor * sqrt(m/kn).  Viscous: an
-   explicit dashpot network is stable while dt < m / sum(gamma) for every
-   particle (Gershgorin).  FLUID: the kernel sums to sum(gamma) = 7 eta V / h^2
-   (2D and 3D), so dt < S m h^2 / (7 eta V).
-   CONTACT: a disc's tangential dashpot also spins it (SaltDEM::rotation_factor),
-   so dt < m / (g (1 + rot ratio)).  Both times viscfactor. */
+/* Limits per type pair.  Elastic: C sqrt(m/kn), C = dtfactor (2 dtfactor against a wall).
+   Viscous: an explicit dashpot network is stable while dt < 2 / lambda_max, and Gershgorin
+   bounds lambda_max by 2 max sum(gamma) / m.  FLUID: the kernel sums to sum(gamma) =
+   7 eta V / h^2 (2D and 3D), which with V = 1/sum W gives dt < S m h^2 / (7 eta V); the
+   constant 0.175 S rho h^2 / (correction eta) (viscfactor 1, rho the disc density) is the
+   lowest limit measured (bench/stable_limit.py: 0.177 at S 200 near the sound limit,
+   0.197-0.211 in channels at S 5-80, 0.22-0.26 in the Expt 1 scene; Gershgorin's bound with
+   V = disc/0.7 is 0.1).  CONTACT: a disc's tangential dashpot
+   also spins it (SaltDEM::rotation_factor), so dt < m / (g (1 + rot ratio)); measured
+   1.26-1.55 times that, so 0.625 of it at viscfactor 1.  The default viscfactor 0.8 leaves a
+   margin of 1.25 on both. */
 
-void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &best,
+void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall, double &best,
                                     std::string &why)
 {
   const double rot = SaltDEM::rotation_factor(domain->dimension);
   const double f2v = force->ftm2v;    // (1 in SI) forces and dashpots act on m / ftm2v
   const double e = eta[i][j];
   const auto &p = params[i][j];
+  const double c = elastic_factor(wall);
   if (p.kn > 0.0)
-    consider_limit(dtfactor * sqrt(m / (p.kn * f2v)), best, why, [&] {
+    consider_limit(c * sqrt(m / (p.kn * f2v)), best, why, [&] {
       return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
-                         "(dt < {} * sqrt(m/kn))",
-                         p.kn, i, j, m, dtfactor);
+                         "(dt < {} * sqrt(m/kn){})",
+                         p.kn, i, j, m, c, wall ? ", 2 dtfactor against a wall" : "");
     });
   double lim;
   std::string formula;
   if (p.mode == SaltDEM::VISCOUS_FLUID) {
     // V = 1/sum W is not known before the first step: bound it by the
     // disc volume over a packing fraction of 0.7
-    lim = viscfactor * mv * 0.7 * p.h * p.h / (7.0 * correction * e * f2v);
-    formula = fmt::format("dt < {} * S m h^2 / (7 correction eta V), V = disc/0.7, h = {:.6g}, "
-                          "correction = {:.6g}",
+    lim = viscfactor * 0.175 * mv * p.h * p.h / (correction * e * f2v);
+    formula = fmt::format("dt < {} * 0.175 S rho h^2 / (correction eta), rho the disc density, "
+                          "h = {:.6g}, correction = {:.6g}",
                           viscfactor, p.h, correction);
     // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
     if (p.K > 0.0) {
@@ -500,8 +506,8 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, double &b
       });
     }
   } else {
-    lim = viscfactor * m / (calibration * e * (1.0 + rot * p.ratio) * f2v);
-    formula = fmt::format("dt < {} * S m / (calibration * eta * (1 + {} * ratio)), "
+    lim = viscfactor * 0.625 * m / (calibration * e * (1.0 + rot * p.ratio) * f2v);
+    formula = fmt::format("dt < {} * 0.625 S m / (calibration * eta * (1 + {} * ratio)), "
                           "calibration = {:.6g}, ratio = {:.6g}, lightest mass {:.6g}",
                           viscfactor, rot, calibration, p.ratio, m);
   }

@@ -98,7 +98,7 @@ class PairSaltdemViscous : public PairSaltdem {
   void derive(int, int) override;
   double range(int i, int j) const override;
   double range_abs(int i, int j) const override;
-  void pair_limit(int, int, double, double, double &, std::string &) override;
+  void pair_limit(int, int, double, double, bool, double &, std::string &) override;
   int restart_version() const override { return 1; }
   std::vector<std::string> setting_names() const override;
   void pack_settings(double *) const override;

@@ -191,21 +191,21 @@ def _natural_key(path: str):
 
 
 def expand_paths(patterns: Iterable[str]) -> List[str]:
-    """Expand globs (``dump.*.txt``) and sort by the numbers in the names.
-
-    Explicitly listed files keep the order given; a glob's matches are sorted
-    naturally so that ``dump.1000.txt`` follows ``dump.200.txt``.
+    """Expand globs (``dump.*.txt``) and sort by the numbers in the names, so that
+    ``dump.1000.txt`` follows ``dump.200.txt``: the frames of a run in the order of their
+    steps, whether the program or the shell expanded the glob (the shell sorts
+    ``dump.100280.txt`` before ``dump.6000.txt``).
     """
     out: List[str] = []
     for pat in patterns:
         if os.path.exists(pat):
             out.append(pat)
             continue
-        matches = sorted(glob.glob(pat), key=_natural_key)
+        matches = glob.glob(pat)
         if not matches:
             raise FileNotFoundError(f"no dump file matches {pat!r}")
         out.extend(matches)
-    return out
+    return sorted(dict.fromkeys(out), key=_natural_key)
 
 
 class _Source:

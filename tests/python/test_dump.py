@@ -54,6 +54,10 @@ def test_one_file_per_frame_natural_order(tmp_path, make_frame):
     assert [f.timestep for f in iter_frames(str(tmp_path / "dump.*.txt"))] == [0, 500, 10000]
     with pytest.raises(FileNotFoundError):
         expand_paths([str(tmp_path / "nothing.*")])
+    # the shell's expansion of the glob (lexical) comes out in the same order
+    shell = sorted(str(tmp_path / f"dump.{s}.txt") for s in (0, 500, 10000))
+    assert [p.rsplit("/", 1)[1] for p in shell] == ["dump.0.txt", "dump.10000.txt", "dump.500.txt"]
+    assert expand_paths(shell) == paths
 
 
 TRICLINIC = """ITEM: UNITS

@@ -1,4 +1,4 @@
-"""The README's main job: quick Expt 1 at the paper's rate and salt to 250 m, with physics checks
+"""The README's main job (quick Expt 1 at the paper's rate and salt) to 250 m of its 1000 m, with physics checks
 on the frames and its figure (about 4 minutes on one core, including the one-time packing)."""
 import os
 import subprocess

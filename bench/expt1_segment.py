@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Scene-level validation of the settings that change accuracy (time step, inertia factor),
+at full resolution: segments of the full-preset Expt 1 resumed from one restart file, each with
+other settings, compared with a reference segment and against the run-to-run floor.
+
+Every segment resumes the same restart file through the deck's own resume path
+(examples/expt1.in -var restart FILE) with its settings given as deck variables (-var dt: the
+time step, 0 = 0.85 of the styles' stable limit; -var S and S_cover: the inertia factors), and
+runs LENGTH m of fault displacement.  The fields compared are those of bench/expt1_error.py over
+the segment (salt thickness change per 250 m column, mean marker displacement and mean
+incremental maximum shear strain per 250 m cell, from the common first frame at the restart to
+each segment's last frame):
+
+  thickness  RMS difference of the thickness change over the salt thickness (1000 m)
+  marker     RMS difference of the mean displacement over the segment's fault displacement
+  strain     RMS difference of the mean shear strain over the reference's RMS
+
+The floor: the same settings on 1 OpenMP thread and on 2 (round-off only, which the granular
+cover turns into a different, equally valid run).  A setting whose difference from the
+reference lies within the floor cannot be told from it.
+
+  PYTHONPATH=python /usr/bin/python3 bench/expt1_segment.py --restart R --work out/segments \\
+      --seg paper:0.002:20:1 --seg paper-omp2:0.002:20:2 --seg new:0:20:1 --seg new-omp2:0:20:2 \\
+      --ref paper --floor paper:paper-omp2 --floor new:new-omp2 [--length 50] [--table T.md]
+
+--seg NAME:DT:S:THREADS (S 0: the preset's; a segment already run, with its done.json, is not run again);
+--run NAME runs only that segment (to spread segments over cores) and compares nothing.
+"""
+import argparse
+import json
+import os
+import pathlib
+import re
+import resource
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from expt1_error import ROOT, compare, fields    # noqa: E402  (the same measures)
+
+
+def lmp_path():
+    return os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
+
+
+PRESET = "full"
+
+
+def deck_args(restart, extra):
+    return [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-log", "log.lammps",
+            "-echo", "none", "-screen", "none", "-var", "root", str(ROOT), "-var", "preset", PRESET,
+            "-var", "restart", str(restart)] + extra
+
+
+def start(restart, work):
+    """The restart's state as a frame (resume_frame 1, no frame to run): its dump and its
+    displacement and step."""
+    d = work / "start"
+    done = d / "done.json"
+    if done.exists():
+        return json.loads(done.read_text())
+    d.mkdir(parents=True, exist_ok=True)
+    p = subprocess.run(deck_args(restart, ["-var", "resume_frame", "1", "-var", "f", "0"]),
+                       cwd=d, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    log = (d / "log.lammps").read_text() if (d / "log.lammps").exists() else ""
+    if p.returncode != 0:
+        raise RuntimeError(f"start: {[l for l in log.splitlines() if 'ERROR' in l][:1] or log[-1500:]}")
+    m = re.search(r"^\s*Step\s+v_disp.*\n\s*(\d+)\s+([-0-9.eE+]+)", log, re.M)
+    dumps = list(d.glob("dump.expt1.*.txt"))
+    assert m and len(dumps) == 1, "start: no thermo line with the displacement, or no frame"
+    res = dict(step=int(m.group(1)), disp=float(m.group(2)), dump=str(dumps[0]))
+    done.write_text(json.dumps(res) + "\n")
+    return res
+
+
+def segment(name, dt, S, threads, restart, st, length, work):
+    d = work / name
+    done = d / "done.json"
+    if done.exists():
+        return json.loads(done.read_text())
+    d.mkdir(parents=True, exist_ok=True)
+    end = st["disp"] + length
+    extra = ["-var", "f", f"{end:.6f}", "-var", "dt", f"{dt:g}"]
+    if S > 0:    # else the preset's
+        extra += ["-var", "S", f"{S:g}", "-var", "S_cover", f"{S:g}"]
+    if threads > 1:
+        extra += ["-sf", "omp", "-pk", "omp", str(threads)]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.time()
+    p = subprocess.run(deck_args(restart, extra), cwd=d, capture_output=True, text=True,
+                       env=dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_WAIT_POLICY="passive"))
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    log = (d / "log.lammps").read_text() if (d / "log.lammps").exists() else ""
+    if p.returncode != 0:
+        raise RuntimeError(f"{name}: {[l for l in log.splitlines() if 'ERROR' in l][:1] or log[-1500:]}")
+    dumps = sorted(d.glob("dump.expt1.*.txt"), key=lambda q: int(q.name.split(".")[2]))
+    step_dt = re.findall(r"time step ([0-9.eE+-]+) s, drive", log)
+    res = dict(name=name, dt=float(step_dt[-1]) if step_dt else dt, S=S, threads=threads,
+               steps=int(dumps[-1].name.split(".")[2]) - st["step"],
+               cpu_s=(after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
+               wall_s=time.time() - t0, first=st["dump"], last=str(dumps[-1]))
+    done.write_text(json.dumps(res) + "\n")
+    return res
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--restart", required=True, type=pathlib.Path)
+    ap.add_argument("--preset", default="full", help="the preset the restart file was run with")
+    ap.add_argument("--work", default=str(ROOT / "out" / "segments"))
+    ap.add_argument("--length", type=float, default=50.0, help="fault displacement per segment (m)")
+    ap.add_argument("--seg", action="append", default=[], help="NAME:DT:S:THREADS")
+    ap.add_argument("--run", help="run only this segment")
+    ap.add_argument("--ref", help="the reference segment")
+    ap.add_argument("--floor", action="append", default=[], help="A:B, a pair of the same settings")
+    ap.add_argument("--table", help="write the table (markdown) here too")
+    a = ap.parse_args(argv)
+    global PRESET
+    PRESET = a.preset
+    work = pathlib.Path(a.work).resolve()
+    restart = a.restart.resolve()
+    segs = {}
+    for s in a.seg:
+        name, dt, S, th = s.split(":")
+        segs[name] = (float(dt), float(S), int(th))
+    st = start(restart, work)
+    if a.run:
+        print(json.dumps(segment(a.run, *segs[a.run], restart, st, a.length, work)))
+        return 0
+    res = {n: segment(n, *v, restart, st, a.length, work) for n, v in segs.items()}
+    f = {n: fields(r) for n, r in res.items()}
+    rows = ["| segment | dt (s) | S | threads | steps | CPU (s) | against | thickness | marker | strain |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    pairs = [(x, y, "floor") for x, y in (p.split(":") for p in a.floor)]
+    pairs += [(a.ref, n, "") for n in res if a.ref and n != a.ref and not any(n == y for _, y, _ in pairs)]
+    for x, y, kind in pairs:
+        c = compare(f[x], f[y], a.length)
+        r = res[y]
+        rows.append(f"| {y}{' (floor)' if kind else ''} | {r['dt']:.4g} | {r['S'] or 'preset'} | {r['threads']} | "
+                    f"{r['steps']} | {r['cpu_s']:.0f} | {x} | {c['thickness']:.4f} | {c['marker']:.4f} | "
+                    f"{c['strain']:.3f} |")
+    table = "\n".join(rows)
+    print(f"restart at {st['disp']:.1f} m (step {st['step']}), segments of {a.length:g} m\n{table}")
+    (work / "segments.json").write_text(json.dumps(dict(start=st, runs=res), indent=1) + "\n")
+    if a.table:
+        pathlib.Path(a.table).write_text(table + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -47,11 +47,13 @@ using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
-    apress(nullptr), scratch(nullptr), fix_density(nullptr), fluidself(nullptr), isfluid(nullptr),
-    nmax(0), any_fluid(false), calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION),
-    viscfactor(0.8), calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
+    pmat(nullptr), moment(nullptr), scratch(nullptr), fix_density(nullptr), fluidself(nullptr),
+    isfluid(nullptr), nmax(0), any_fluid(false), calibration(DEFAULT_CALIBRATION),
+    correction(DEFAULT_CORRECTION), viscfactor(0.8), calibration_checked(DEFAULT_CALIBRATION),
+    salt_inertia(1.0)
 {
-  comm_forward = 2;
+  comm_forward = 1 + SaltDEM::NSYM;    // volume and pressure matrix
+  comm_reverse = SaltDEM::NSYM;        // the kernel moments of ghosts (newton on)
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -60,7 +62,8 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(params);
   memory->destroy(eta);
   memory->destroy(vol);
-  memory->destroy(apress);
+  memory->destroy(pmat);
+  memory->destroy(moment);
   memory->destroy(scratch);
   memory->destroy(isfluid);
   memory->destroy(fluidself);
@@ -320,8 +323,9 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
    sum_j m_j W_ij of that type at the setup of the first run (the fix measures it), so the
    fluid starts free of pressure.  A summed kernel density would instead drift upwards as
    particles pair up (the mean of sum_j W grows while the volume does not).  Here, before the
-   force pass: the volume m / rho and a = m P / rho^2 with the equation of state
-   (SaltDEM::particle_volume, SaltDEM::pressure_term), sent to the ghosts. */
+   force pass: the volume m / rho and the pressure matrix A = m P / rho^2 L with the equation
+   of state and the kernel-gradient correction L of the present positions
+   (SaltDEM::particle_volume, pressure_term, pressure_matrix), sent to the ghosts. */
 
 void PairSaltdemViscous::pre_loop()
 {
@@ -333,6 +337,18 @@ void PairSaltdemViscous::pre_loop()
   const double *rho = fix_density->rho;
   const double *rho0 = fix_density->rho0.data();
   const int nt = atom->ntypes;
+  const int dim = domain->dimension;
+  constexpr int NS = SaltDEM::NSYM;
+
+  bool any_pressure = false;
+  for (int t = 1; t <= nt; t++)
+    if (isfluid[t]) any_pressure = true;
+  if (any_pressure) {
+    if (dim == 2)
+      kernel_moments<2>();
+    else
+      kernel_moments<3>();
+  }
 
   // a boundary particle (wall, cover) gets the volume it would have at the fluid's reference
   // density; a fluid particle created during the run starts at its reference density
@@ -343,20 +359,73 @@ void PairSaltdemViscous::pre_loop()
     const int t = type[i];
     const double r = fluidself[t] ? (rho[i] > 0.0 ? rho[i] : rho0[t]) : rhob;
     vol[i] = SaltDEM::particle_volume(m[i], r);
-    apress[i] = isfluid[t] ? SaltDEM::pressure_term(m[i], params[t][t].K, r, rho0[t]) : 0.0;
+    double *A = &pmat[NS * i];
+    if (isfluid[t]) {
+      const double a = SaltDEM::pressure_term(m[i], params[t][t].K, r, rho0[t]);
+      double *S = &moment[NS * i];
+      if (dim == 2)
+        SaltDEM::pressure_matrix<2>(a, r, S);
+      else
+        SaltDEM::pressure_matrix<3>(a, r, S);
+      for (int k = 0; k < NS; k++) A[k] = S[k];
+    } else
+      for (int k = 0; k < NS; k++) A[k] = 0.0;
   }
   comm->forward_comm(this);
+}
+
+/* the kernel moments S_i = sum_j m_j w_ij d_ij d_ij of the owned particles that carry a
+   pressure, over the FLUID pairs of the list (with newton on the ghosts' parts go home) */
+
+template <int DIM> void PairSaltdemViscous::kernel_moments()
+{
+  constexpr int NS = SaltDEM::NSYM;
+  const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
+  const double *m = atom->rmass;
+  const int *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  for (int i = 0; i < NS * (newton_pair ? nall : nlocal); i++) moment[i] = 0.0;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int itype = type[i];
+    const bool fi = isfluid[itype];
+    const double xi0 = x[i][0], xi1 = x[i][1], xi2 = (DIM == 3) ? x[i][2] : 0.0;
+    const int *jlist = list->firstneigh[i];
+    const SaltDEM::ViscousParams *prow = params[itype];
+    double Si[NS] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // i's sum, stored once
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = jlist[jj] & NEIGHMASK;
+      const int jtype = type[j];
+      const SaltDEM::ViscousParams &p = prow[jtype];
+      const bool fj = isfluid[jtype];
+      if (p.mode != SaltDEM::VISCOUS_FLUID || !(fi || fj)) continue;
+      const double d[3] = {xi0 - x[j][0], xi1 - x[j][1], (DIM == 3) ? xi2 - x[j][2] : 0.0};
+      const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      if (rsq * p.ih2 * p.ih2 >= 1.0 || rsq == 0.0) continue;    // beyond 2h (the list has a skin)
+      const double s = 1.0 - sqrt(rsq) * p.ih2;
+      const double w = p.cw * s * s * s;
+      if (fi) SaltDEM::add_moment<DIM>(m[j] * w, d, Si);
+      if (fj && (newton_pair || j < nlocal)) SaltDEM::add_moment<DIM>(m[i] * w, d, &moment[NS * j]);
+    }
+    if (fi)
+      for (int k = 0; k < NS; k++) moment[NS * i + k] += Si[k];
+  }
+  if (newton_pair) comm->reverse_comm(this);
 }
 
 void PairSaltdemViscous::grow_arrays()
 {
   if (atom->nmax <= nmax) return;
   memory->destroy(vol);
-  memory->destroy(apress);
+  memory->destroy(pmat);
+  memory->destroy(moment);
   memory->destroy(scratch);
   nmax = atom->nmax;
   memory->create(vol, nmax, "pair:vol");
-  memory->create(apress, nmax, "pair:apress");
+  memory->create(pmat, SaltDEM::NSYM * nmax, "pair:pmat");
+  memory->create(moment, SaltDEM::NSYM * nmax, "pair:moment");
   if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
 }
 
@@ -375,26 +444,47 @@ double *PairSaltdemViscous::loop_sum()
 
 int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, int *)
 {
+  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
   int k = 0;
   for (int i = 0; i < n; i++) {
-    buf[k++] = vol[list[i]];
-    buf[k++] = apress[list[i]];
+    const int j = list[i];
+    buf[k++] = vol[j];
+    for (int c = 0; c < ns; c++) buf[k++] = pmat[SaltDEM::NSYM * j + c];
   }
   return k;
 }
 
 void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
 {
+  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
   int k = 0;
   for (int i = first; i < first + n; i++) {
     vol[i] = buf[k++];
-    apress[i] = buf[k++];
+    for (int c = 0; c < ns; c++) pmat[SaltDEM::NSYM * i + c] = buf[k++];
   }
+}
+
+int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
+{
+  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
+  int k = 0;
+  for (int i = first; i < first + n; i++)
+    for (int c = 0; c < ns; c++) buf[k++] = moment[SaltDEM::NSYM * i + c];
+  return k;
+}
+
+void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
+  int k = 0;
+  for (int i = 0; i < n; i++)
+    for (int c = 0; c < ns; c++) moment[SaltDEM::NSYM * list[i] + c] += buf[k++];
 }
 
 double PairSaltdemViscous::memory_usage()
 {
-  return PairSaltdem::memory_usage() + (scratch ? 3.0 : 2.0) * nmax * sizeof(double);
+  return PairSaltdem::memory_usage() +
+      (1.0 + 2.0 * SaltDEM::NSYM + (scratch ? 1.0 : 0.0)) * nmax * sizeof(double);
 }
 
 /* the dashpots from the viscosity, which may have been changed through extract("eta") since

@@ -45,6 +45,8 @@ class PairSaltdemViscous : public PairSaltdem {
   void pre_loop() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
   double *loop_sum() override;
@@ -78,7 +80,9 @@ class PairSaltdemViscous : public PairSaltdem {
   SaltDEM::ViscousParams **params;
   double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
   double *vol;        // FLUID: particle volume m / rho, owned and ghost atoms
-  double *apress;     // FLUID: m P / rho^2 per atom (pressure term), owned and ghost atoms
+  double *pmat;       // FLUID: pressure matrix A = m P / rho^2 L per atom (NSYM values, see
+                      // SaltDEM::pressure_matrix), owned and ghost atoms
+  double *moment;     // FLUID: its kernel moment S = sum_j m_j w d d (NSYM values per atom)
   double *scratch;    // no FLUID pair: what the force pass sums the (zero) q into
   class FixSaltdemDensity *fix_density;    // FLUID: the density (state) and d rho / dt
   std::string density_id;                  // its ID
@@ -90,7 +94,8 @@ class PairSaltdemViscous : public PairSaltdem {
   double correction;    // FLUID: Morris viscosity multiplied by this (measured, see above)
   double viscfactor;    // safety factor on the viscous stable dt
   template <int DIM> void kernel_density(double *out);
-  void grow_arrays();    // vol, apress (and scratch) for the owned and ghost atoms
+  template <int DIM> void kernel_moments();
+  void grow_arrays();    // vol, pmat, moment (and scratch) for the owned and ghost atoms
   void allocate_params(int) override;
   void *pair_params(int i, int j) override;
   size_t params_size() const override;

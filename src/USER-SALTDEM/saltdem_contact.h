@@ -399,17 +399,96 @@ namespace SaltDEM {
     return (rho0 > 0.0) ? m * K * (rho / rho0 - 1.0) / (rho * rho) : 0.0;
   }
 
-  /* FLUID: the SPH pressure pair coefficient pc = m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) from the
-   pressure terms a = m P / rho^2 of particles i and j, where fi, fj say whether each carries
-   a pressure (its own pair is FLUID with K > 0).  The boundary rule: a particle that carries
-   none (a wall, the cover, a fluid with K = 0) mirrors its partner's, so the fluid's
-   pressure pushes on it as on more fluid; two such particles exert none. */
-  inline double pressure_pair(bool fi, bool fj, double mi, double mj, double ai, double aj)
+  /* FLUID: the pressure of a particle is carried by a symmetric matrix, stored as xx, yy, xy
+   (2D) or xx, yy, zz, xy, xz, yz (3D): A_i = (m_i P_i / rho_i) S_i^-1 with the kernel's second
+   moment S_i = sum_j m_j w_ij d_ij d_ij (w = |W'|/r, d = x_i - x_j, over the FLUID pairs of
+   i, boundary partners included), i.e. m P / rho^2 times the kernel-gradient correction
+   L_i = (S_i / rho_i)^-1 of Bonet & Lok (1999).  The pair force m_j A_i grad W + m_i A_j grad W
+   (their variational form) conserves linear momentum, and i's half of its pairs has the
+   virial sum_j w m_j d (A_i d) = S_i A_i = V_i P_i I: a particle's pressure makes an isotropic
+   stress whatever the arrangement of its neighbours.  Without L (the plain SPH gradient) that
+   virial is P_i V_i S_i / rho_i, whose off-diagonal part under a sheared, loaded arrangement
+   made a shear stress proportional to the pressure (a friction; docs/validation.md).
+   Number of stored components per atom (both dimensions use the same stride): */
+  constexpr int NSYM = 6;
+  template <int DIM> constexpr int nsym()
   {
-    if (fi && fj) return mj * ai + mi * aj;
-    if (fi) return 2.0 * mj * ai;
-    if (fj) return 2.0 * mi * aj;
-    return 0.0;
+    return DIM == 2 ? 3 : 6;
+  }
+
+  /* the pressure matrix A of a particle from its scalar term a = m P / rho^2, density rho and
+   moment S (overwritten with A).  The correction needs a moment that spans all directions: a
+   particle with few neighbours on one side (det(S/rho) below DET_MIN, against 1 in a full
+   kernel and 1/2 at a flat free surface) keeps the plain gradient, A = a I */
+  constexpr double CORRECTION_DET_MIN = 0.1;
+  template <int DIM> inline void pressure_matrix(double a, double rho, double *S)
+  {
+    const double u = 1.0 / rho;
+    if (DIM == 2) {
+      const double xx = S[0] * u, yy = S[1] * u, xy = S[2] * u;
+      const double det = xx * yy - xy * xy;
+      if (det < CORRECTION_DET_MIN) {
+        S[0] = S[1] = a;
+        S[2] = 0.0;
+        return;
+      }
+      const double f = a / det;
+      S[0] = f * yy;
+      S[1] = f * xx;
+      S[2] = -f * xy;
+      return;
+    }
+    const double xx = S[0] * u, yy = S[1] * u, zz = S[2] * u;
+    const double xy = S[3] * u, xz = S[4] * u, yz = S[5] * u;
+    const double c0 = yy * zz - yz * yz, c1 = xz * yz - xy * zz, c2 = xy * yz - xz * yy;
+    const double det = xx * c0 + xy * c1 + xz * c2;
+    if (det < CORRECTION_DET_MIN) {
+      S[0] = S[1] = S[2] = a;
+      S[3] = S[4] = S[5] = 0.0;
+      return;
+    }
+    const double f = a / det;
+    S[0] = f * c0;
+    S[1] = f * (xx * zz - xz * xz);
+    S[2] = f * (xx * yy - xy * xy);
+    S[3] = f * c1;
+    S[4] = f * c2;
+    S[5] = f * (xy * xz - xx * yz);
+  }
+
+  /* FLUID: the SPH pressure pair matrix pm = m_j A_i + m_i A_j from the pressure matrices of
+   particles i and j, where fi, fj say whether each carries a pressure (its own pair is FLUID
+   with K > 0).  The boundary rule: a particle that carries none (a wall, the cover, a fluid
+   with K = 0) mirrors its partner's pressure and correction, so the fluid's pressure pushes
+   on it as on more fluid; two such particles exert none. */
+  template <int DIM>
+  inline void pressure_pair(bool fi, bool fj, double mi, double mj, const double *Ai,
+                            const double *Aj, double *pm)
+  {
+    constexpr int n = nsym<DIM>();
+    if (fi && fj)
+      for (int k = 0; k < n; k++) pm[k] = mj * Ai[k] + mi * Aj[k];
+    else if (fi)
+      for (int k = 0; k < n; k++) pm[k] = 2.0 * mj * Ai[k];
+    else if (fj)
+      for (int k = 0; k < n; k++) pm[k] = 2.0 * mi * Aj[k];
+    else
+      for (int k = 0; k < n; k++) pm[k] = 0.0;
+  }
+
+  /* the moment S += c d d (the layout of pressure_matrix) */
+  template <int DIM> inline void add_moment(double c, const double *d, double *S)
+  {
+    S[0] += c * d[0] * d[0];
+    S[1] += c * d[1] * d[1];
+    if (DIM == 2) {
+      S[2] += c * d[0] * d[1];
+      return;
+    }
+    S[2] += c * d[2] * d[2];
+    S[3] += c * d[0] * d[1];
+    S[4] += c * d[0] * d[2];
+    S[5] += c * d[1] * d[2];
   }
 
   /* Wendland C2 kernel W(q = r/h) = A (1 - q/2)^4 (1 + 2q) on r < 2h, with
@@ -434,16 +513,16 @@ namespace SaltDEM {
 
   /* FLUID: the Morris viscosity and the SPH pressure between particles of
    volumes voli, volj (m/rho) at d = x_i - x_j, r = |d|, relative velocity
-   vr = v_i - v_j, radii summing to radsum; pc: the SPH pressure pair
-   coefficient m_i m_j (P_i/rho_i^2 + P_j/rho_j^2).  No torque.  divw:
+   vr = v_i - v_j, radii summing to radsum; pm: the SPH pressure pair matrix
+   m_j A_i + m_i A_j (pressure_pair).  No torque.  divw:
    v_ij . grad_i W_ij, the pair's term of the continuity equation
    d rho_i/dt = sum_j m_j v_ij . grad_i W_ij.  Written on d rather than the
    unit normal: no division unless an elastic core acts.  Returns true while
    the discs touch. */
   template <int DIM = 3, int EVFLAG = 1>
   inline bool viscous_fluid_force(const ViscousParams &p, const double *d, const double *vr,
-                                  double r, double radsum, double voli, double volj, double pc,
-                                  double *f, double &evdwl, double &divw)
+                                  double r, double radsum, double voli, double volj,
+                                  const double *pm, double *f, double &evdwl, double &divw)
   {
     const double delta = radsum - r;
     const bool touching = delta > 0.0;
@@ -451,12 +530,21 @@ namespace SaltDEM {
     const double s = 1.0 - r * p.ih2;
     const double s3 = (s > 0.0) ? s * s * s : 0.0;
     const double g = p.kfac * voli * volj * s3;    // Morris viscosity
-    // grad_i W = -cw s^3 d; pressure -pc grad_i W, repulsive for P > 0; the core kn delta d/r
+    // grad_i W = -cw s^3 d; pressure -pm grad_i W, repulsive for P > 0; the core kn delta d/r
     const double cws3 = p.cw * s3;
-    const double a = pc * cws3 + ((touching && p.kn > 0.0) ? p.kn * delta / r : 0.0);
+    const double a = (touching && p.kn > 0.0) ? p.kn * delta / r : 0.0;
+    double pd[3];
+    if (DIM == 2) {
+      pd[0] = pm[0] * d[0] + pm[2] * d[1];
+      pd[1] = pm[2] * d[0] + pm[1] * d[1];
+    } else {
+      pd[0] = pm[0] * d[0] + pm[3] * d[1] + pm[4] * d[2];
+      pd[1] = pm[3] * d[0] + pm[1] * d[1] + pm[5] * d[2];
+      pd[2] = pm[4] * d[0] + pm[5] * d[1] + pm[2] * d[2];
+    }
     double vd = 0.0;
     for (int k = 0; k < DIM; k++) {
-      f[k] = a * d[k] - g * vr[k];
+      f[k] = cws3 * pd[k] + a * d[k] - g * vr[k];
       vd += vr[k] * d[k];
     }
     divw = -cws3 * vd;

@@ -233,12 +233,13 @@ int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, 
                          (DIM == 3) ? a.x[i][2] - a.x[j][2] : 0.0};
     const double vr[3] = {a.v[i][0] - a.v[j][0], a.v[i][1] - a.v[j][1],
                           (DIM == 3) ? a.v[i][2] - a.v[j][2] : 0.0};
-    // SPH pressure m_i m_j (P_i/rho_i^2 + P_j/rho_j^2) with a_i = m_i P_i / rho_i^2;
-    // a particle that is not fluid (wall, cover) mirrors the fluid's pressure
-    const double pc = SaltDEM::pressure_pair(isfluid[itype], isfluid[jtype], a.rmass[i], a.rmass[j],
-                                             apress[i], apress[j]);
+    // SPH pressure m_j A_i + m_i A_j with the corrected pressure matrices A (pre_loop); a
+    // particle that is not fluid (wall, cover) mirrors the fluid's
+    double pm[SaltDEM::NSYM];
+    SaltDEM::pressure_pair<DIM>(isfluid[itype], isfluid[jtype], a.rmass[i], a.rmass[j],
+                                &pmat[SaltDEM::NSYM * i], &pmat[SaltDEM::NSYM * j], pm);
     return SaltDEM::viscous_fluid_force<DIM, EVFLAG>(p, d, vr, r, a.radius[i] + a.radius[j], vol[i],
-                                                     vol[j], pc, f, evdwl, q)
+                                                     vol[j], pm, f, evdwl, q)
         ? LAW_TOUCH
         : 0;
   }

@@ -154,7 +154,7 @@ def main():
     ap.add_argument("--cases", default="slope,couette")
     ap.add_argument("--time", type=float, default=1500.0)
     args = ap.parse_args()
-    work = pathlib.Path(args.work)
+    work = pathlib.Path(args.work).resolve()
     work.mkdir(parents=True, exist_ok=True)
     results = {}
     if "slope" in args.cases:

@@ -23,7 +23,7 @@ reference lies within the floor cannot be told from it.
       --seg paper:0.002:20:1 --seg paper-omp2:0.002:20:2 --seg new:0:20:1 --seg new-omp2:0:20:2 \\
       --ref paper --floor paper:paper-omp2 --floor new:new-omp2 [--length 50] [--table T.md]
 
---seg NAME:DT:S:THREADS (S 0: the preset's; a segment already run, with its done.json, is not run again);
+--seg NAME:DT:S:THREADS (DT 0: the restart file's step; S 0: the preset's; a segment already run, with its done.json, is not run again);
 --run NAME runs only that segment (to spread segments over cores) and compares nothing.
 """
 import argparse

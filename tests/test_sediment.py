@@ -48,7 +48,7 @@ group pack type 1 2
 LAWS
 fix integ cover saltdem/nve
 fix grav pack gravity 9.81 vector 0 -1 0
-saltdem/timestep 0.5
+saltdem/timestep 0.1667
 run 4000
 fix calm cover viscous 1e7
 run 12000
@@ -92,7 +92,7 @@ FROZEN = HEAD + f"timestep {DT_FROZEN}\n"
 DYNAMIC = HEAD + """
 fix integ cover saltdem/nve
 fix grav pack gravity 9.81 vector 0 -1 0
-saltdem/timestep 0.5
+saltdem/timestep 0.1667
 """
 # the resumed half of a run (after read_restart: the same fixes with the same IDs)
 RESUMED = """

@@ -6,7 +6,12 @@ discs, made once per module; the decks below deposit into it.  "Frozen" decks in
 others run with gravity.  Checked: fill to the base level, the area per interval at a rate,
 overlaps, epochs in dumps and across restart files, a restart in the middle of deposition, 2 MPI
 ranks and 2 OpenMP threads against 1, erosion, bad input, the scene decks' variables and the
-figure's growth strata."""
+figure's growth strata.
+
+The decks step at 1/12 of the stable limit: the step the tests were designed at (0.5 of the
+cover-wall limit 0.2 sqrt(m/kn_wall) of that time, 0.00166 s), which the measured limits now
+report as 0.6 sqrt(m/kn_cover) = 1.2 sqrt(m/kn_wall); the rate and restart cases are tuned to
+that step (at twice it the basin fills before the last interval)."""
 import math
 import os
 import re
@@ -48,7 +53,7 @@ group pack type 1 2
 LAWS
 fix integ cover saltdem/nve
 fix grav pack gravity 9.81 vector 0 -1 0
-saltdem/timestep 0.1667
+saltdem/timestep 0.08333333333333333
 run 4000
 fix calm cover viscous 1e7
 run 12000
@@ -92,7 +97,7 @@ FROZEN = HEAD + f"timestep {DT_FROZEN}\n"
 DYNAMIC = HEAD + """
 fix integ cover saltdem/nve
 fix grav pack gravity 9.81 vector 0 -1 0
-saltdem/timestep 0.1667
+saltdem/timestep 0.08333333333333333
 """
 # the resumed half of a run (after read_restart: the same fixes with the same IDs)
 RESUMED = """

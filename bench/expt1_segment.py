@@ -44,16 +44,13 @@ def lmp_path():
     return os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
 
 
-PRESET = "full"
-
-
-def deck_args(restart, extra):
+def deck_args(preset, restart, extra):
     return [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-log", "log.lammps",
-            "-echo", "none", "-screen", "none", "-var", "root", str(ROOT), "-var", "preset", PRESET,
+            "-echo", "none", "-screen", "none", "-var", "root", str(ROOT), "-var", "preset", preset,
             "-var", "restart", str(restart)] + extra
 
 
-def start(restart, work):
+def start(preset, restart, work):
     """The restart's state as a frame (resume_frame 1, no frame to run): its dump and its
     displacement and step."""
     d = work / "start"
@@ -61,7 +58,7 @@ def start(restart, work):
     if done.exists():
         return json.loads(done.read_text())
     d.mkdir(parents=True, exist_ok=True)
-    p = subprocess.run(deck_args(restart, ["-var", "resume_frame", "1", "-var", "f", "0"]),
+    p = subprocess.run(deck_args(preset, restart, ["-var", "resume_frame", "1", "-var", "f", "0"]),
                        cwd=d, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
     log = (d / "log.lammps").read_text() if (d / "log.lammps").exists() else ""
     if p.returncode != 0:
@@ -74,7 +71,7 @@ def start(restart, work):
     return res
 
 
-def segment(name, dt, S, threads, restart, st, length, work):
+def segment(name, dt, S, threads, preset, restart, st, length, work):
     d = work / name
     done = d / "done.json"
     if done.exists():
@@ -88,7 +85,7 @@ def segment(name, dt, S, threads, restart, st, length, work):
         extra += ["-sf", "omp", "-pk", "omp", str(threads)]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.time()
-    p = subprocess.run(deck_args(restart, extra), cwd=d, capture_output=True, text=True,
+    p = subprocess.run(deck_args(preset, restart, extra), cwd=d, capture_output=True, text=True,
                        env=dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_WAIT_POLICY="passive"))
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     log = (d / "log.lammps").read_text() if (d / "log.lammps").exists() else ""
@@ -116,19 +113,17 @@ def main(argv=None):
     ap.add_argument("--floor", action="append", default=[], help="A:B, a pair of the same settings")
     ap.add_argument("--table", help="write the table (markdown) here too")
     a = ap.parse_args(argv)
-    global PRESET
-    PRESET = a.preset
     work = pathlib.Path(a.work).resolve()
     restart = a.restart.resolve()
     segs = {}
     for s in a.seg:
         name, dt, S, th = s.split(":")
         segs[name] = (float(dt), float(S), int(th))
-    st = start(restart, work)
+    st = start(a.preset, restart, work)
     if a.run:
-        print(json.dumps(segment(a.run, *segs[a.run], restart, st, a.length, work)))
+        print(json.dumps(segment(a.run, *segs[a.run], a.preset, restart, st, a.length, work)))
         return 0
-    res = {n: segment(n, *v, restart, st, a.length, work) for n, v in segs.items()}
+    res = {n: segment(n, *v, a.preset, restart, st, a.length, work) for n, v in segs.items()}
     f = {n: fields(r) for n, r in res.items()}
     rows = ["| segment | dt (s) | S | threads | steps | CPU (s) | against | thickness | marker | strain |",
             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]

@@ -111,7 +111,7 @@ fix grav pack gravity 9.81 vector 0 -1 0
 SED = "fix sed cover saltdem/sediment ${mode} type 1 every ${every} rmin 20 rmax 30 " \
       "density 2200 seed 7 epoch i_epoch group pack ${extra}\n"
 THERMO = "thermo_style custom step time atoms f_sed[1] f_sed[2] f_sed[3] f_sed[4] f_sed[5] " \
-         "f_sed[6] f_sed[8] f_sed[9]\nthermo_modify format float %.17g\nthermo ${every_t}\n"
+         "f_sed[6] f_sed[8] f_sed[9] f_sed[10] f_sed[11]\nthermo_modify format float %.17g\nthermo ${every_t}\n"
 DUMP = "write_dump all custom {} id type x y radius i_epoch modify format float %.17g\n"
 
 
@@ -254,6 +254,117 @@ fix ext right saltdem/tiltwall tilt 5 rate 10 target 100
     steps = [s for _, s, _, _ in epochs_logged(r.out)]
     # the drive reaches k x 0.125 m at the end of step 8 k; the discs come the step after
     assert steps == [8 * k + 1 for k in range(1, 5)]
+
+
+# ---------------------------------------------------------------------------------------------
+# a window that moves: deposition behind a migrating front (the prograding wedge), and a foreset
+# ---------------------------------------------------------------------------------------------
+
+# the front at 50 + 20 x step m: 250, 450, 650, 850 m at the intervals of steps 10, 20, 30, 40
+FRONT = "variable front equal 50+20*step\n"
+
+
+def front_at(step):
+    return 50.0 + 20.0 * step
+
+
+@pytest.mark.parametrize("foreset", [None, 0.5])
+def test_fill_behind_a_migrating_front(bed, tmp_path, foreset):
+    """x 0 v_front: each interval fills the window 0 to the front's position at that step, to the
+    base level; with a foreset the deposit runs on past the front below a base level that falls
+    by 0.5 per m.  A fix that kept the window of its first interval, or the box, fails."""
+    extra = "base 400 x -100 v_front" + (f" foreset {foreset}" if foreset is not None else "")
+    deck = FROZEN + FRONT + SED + THERMO + "run 40\n" + DUMP.format("after.txt")
+    r = lmp_sed(bed, tmp_path, deck, mode="fill", every=10, extra=extra)
+    check_ok(r)
+    ep = epochs_logged(r.out)
+    assert [e[:2] for e in ep] == [(k, 10 * k) for k in range(1, 5)]
+    assert all(n > 0 for _, _, n, _ in ep)          # each move of the front opens room
+    assert "in x -100 to 250 m" in r.out and "in x -100 to 850 m" in r.out
+    b = read_dump(tmp_path / "after.txt")
+    th = r.thermo()
+    assert th["f_sed[10]"][-1] == -100 and th["f_sed[11]"][-1] == front_at(40)
+    for k in range(1, 5):
+        sel = b["i_epoch"] == k
+        x, y, rad = b["x"][sel], b["y"][sel], b["radius"][sel]
+        xf = front_at(10 * k)
+        assert sel.sum() == ep[k - 1][2]
+        if foreset is None:
+            assert np.all(x + rad <= xf + 1e-9), k            # inside the window of its step
+            assert np.all(y <= 400 + 1e-9)
+        else:
+            assert np.all(y <= 400 - foreset * np.maximum(0.0, x - xf) + 1e-9), k
+        if k > 1:                                            # the deposit follows the front
+            assert np.any(x > front_at(10 * (k - 1))), k
+    # behind the last front every column is filled to within a disc of the base level
+    for x0 in range(40, int(front_at(40)) - 60, 40):
+        col = (np.abs(b["x"] - x0) < 30) & (b["type"] == 1)
+        assert (b["y"][col] + b["radius"][col]).max() > 400.0 - 2 * RMAX, x0
+    if foreset is None:
+        assert not np.any((b["x"] + b["radius"] > front_at(40) + 1e-9) & (b["i_epoch"] > 0))
+    else:
+        # foresets: the first three epochs' fronts stand over the basin (floor at 150 m), where
+        # the level falling 0.5 per m leaves room hundreds of m ahead of the front
+        for k in range(1, 4):
+            sel = b["i_epoch"] == k
+            assert np.any(b["x"][sel] > front_at(10 * k) + 100), k
+
+
+def test_rate_per_length_of_a_growing_window(bed, tmp_path):
+    """Rate mode without 'length': R x (the window's length at the interval) x time."""
+    R, every = 200.0, 100
+    deck = FROZEN + "variable front equal 100+step\n" + SED + THERMO + f"run {4 * every}\n"
+    r = lmp_sed(bed, tmp_path, deck, mode=f"rate {R}", every=every, extra="base 500 x 0 v_front")
+    check_ok(r)
+    ep = epochs_logged(r.out)
+    assert len(ep) == 4
+    disc = math.pi * RMAX ** 2
+    total = 0.0
+    for k, (_, step, _, area) in enumerate(ep):
+        per = R * (100.0 + step) * every * DT_FROZEN
+        total += per
+        assert abs(area - per) < disc, (k, area, per)
+        assert abs(sum(a for *_, a in ep[:k + 1]) - total) < disc
+    # the requests differ by the window's growth: a fixed length would not see it
+    assert ep[3][3] - ep[0][3] > 2 * disc
+
+
+def test_restart_with_a_migrating_window_continues_exactly(bed, tmp_path):
+    """The window is evaluated at each interval from its variables (here of the model time,
+    which the restart file keeps): a run split at step 25 deposits what the whole run does."""
+    front = f"variable front equal 250+20*time/{DT_FROZEN}\n"     # 250 + 20 x step m
+    resumed = RESUMED.replace("fix integ cover saltdem/nve\n", "")
+    kw = dict(mode="fill", every=10, extra="base 400 x -100 v_front foreset 1")
+    r = lmp_sed(bed, tmp_path / "whole", FROZEN + front + SED + THERMO + "run 40\n" + DUMP.format("w.txt"), **kw)
+    check_ok(r)
+    r1 = lmp_sed(bed, tmp_path / "split", FROZEN + front + SED + THERMO + "run 25\nwrite_restart h.restart\n", **kw)
+    check_ok(r1)
+    r2 = lmp_sed(bed, tmp_path / "split", resumed + front + SED + THERMO + "run 15\n" + DUMP.format("s.txt"),
+                 restart="h.restart", **kw)
+    check_ok(r2)
+    assert len(epochs_logged(r.out)) == 4
+    assert epochs_logged(r1.out) + epochs_logged(r2.out) == epochs_logged(r.out)
+    a, b = read_dump(tmp_path / "whole" / "w.txt"), read_dump(tmp_path / "split" / "s.txt")
+    for c in a:
+        assert np.array_equal(a[c], b[c]), c
+    t1, t2 = r.thermo(), r2.thermo()
+    assert t2["f_sed[11]"][-1] == t1["f_sed[11]"][-1] == 1050.0
+    # the split run's resumed half reports the window of the interval before the restart
+    assert t2["f_sed[11]"][0] == t1["f_sed[11]"][t1["Step"].index(20.0)] == 650.0
+
+
+def test_two_ranks_fill_behind_a_front_as_one(bed, tmp_path):
+    deck = FROZEN + FRONT + SED + THERMO + "run 30\n" + DUMP.format("after.txt")
+    out = {}
+    for np_ in (1, 2):
+        wd = tmp_path / f"np{np_}"
+        r = lmp_sed(bed, wd, deck, np=np_, mode="fill", every=10, extra="base 400 x -100 v_front foreset 0.5")
+        check_ok(r)
+        out[np_] = (read_dump(wd / "after.txt"), epochs_logged(r.out))
+    (a, ea), (b, eb) = out[1], out[2]
+    assert ea == eb and len(ea) == 3
+    for c in a:
+        assert np.array_equal(a[c], b[c]), c
 
 
 # ---------------------------------------------------------------------------------------------
@@ -442,6 +553,11 @@ BAD = [
     ("fill", "base 150 dist lognormal", ["saltdem/sediment", "dist 'lognormal'"]),
     ("fill", "base 150 overlap 1.5", ["saltdem/sediment", "overlap = 1.5"]),
     ("fill", "base 150 x 500 100", ["saltdem/sediment", "x 500 100"]),
+    ("fill", "base 150 x 0 v_nothere", ["saltdem/sediment", "x window variable nothere", "does not exist"]),
+    ("fill", "base 150 x v_atomic 500", ["saltdem/sediment", "x window variable atomic", "equal-style"]),
+    ("fill", "base 150 x 0 five", ["saltdem/sediment", "x window end 'five'", "v_NAME"]),
+    ("fill", "base 150 x 0 500 foreset -1", ["saltdem/sediment", "foreset = -1", ">= 0"]),
+    ("fill", "base 150 foreset 0.5", ["saltdem/sediment", "foreset needs the window"]),
     ("fill", "base 150 colour red", ["saltdem/sediment", "unknown keyword 'colour'"]),
     ("fill", "", ["saltdem/sediment", "'base'", "required"]),
     ("sprinkle", "base 150", ["saltdem/sediment", "mode 'sprinkle'"]),
@@ -466,6 +582,13 @@ def test_a_base_level_variable_that_leaves_the_box_is_an_error(bed, tmp_path):
     deck = FROZEN + "variable bl equal 150+step*1000\n" + SED + "run 20\n"
     r = lmp_sed(bed, tmp_path, deck, extra="base v_bl")
     assert_error(r, "saltdem/sediment", "base level = 10150", "outside the box")
+
+
+def test_a_window_whose_ends_cross_is_an_error(bed, tmp_path):
+    """x v_front 500: the front passes the window's other end by step 30 (450 m at 20, 650 at 30)."""
+    deck = FROZEN + FRONT + SED + "run 40\n"
+    r = lmp_sed(bed, tmp_path, deck, extra="base 400 x v_front 500")
+    assert_error(r, "saltdem/sediment", "x v_front 500 at step 30", "650 to 500 m", "low end must be below")
 
 
 def test_a_group_or_type_without_the_cover_law_is_an_error(bed, tmp_path):
@@ -551,6 +674,12 @@ def test_scene_deck_erosion_alone_and_bad_mode(tmp_path):
     wd.mkdir()
     proc = run_scene("expt3.in", wd, preset="tiny", target=0.2, f=0.2, sediment="sprinkle")
     assert "sediment sprinkle must be none, fill or rate" in proc.stdout
+
+
+def test_scene_deck_window_needs_both_ends(tmp_path):
+    proc = run_scene("expt1.in", tmp_path, preset="tiny", sediment="fill", sed_xlo=0)
+    assert "give both sed_xlo and sed_xhi (the window), or neither" in proc.stdout
+    assert proc.returncode != 0 or "scene: sediment fill" not in proc.stdout
 
 
 def test_figure_colours_growth_strata_by_epoch(syntectonic, tmp_path):

@@ -62,7 +62,8 @@ using MathConst::MY_PI;
 // exponent of the paper's radius law p(r) ~ r^-Q (tools/pack.in, dist paper)
 static constexpr double PAPER_Q = 1.7522293;
 // a restart record starts with this number (and its layout version)
-static constexpr double RESTART_TAG = 18002.0;
+static constexpr double RESTART_TAG = 18003.0;
+static constexpr double RESTART_TAG_V1 = 18002.0;    // before the window (no last_xlo, last_xhi)
 // radii drawn in a row that find no room before an interval stops depositing
 static constexpr int MAX_REDRAWS = 50;
 
@@ -73,15 +74,16 @@ FixSaltdemSediment::FixSaltdemSediment(LAMMPS *lmp, int narg, char **arg) :
     dist(DIST_UNIFORM), density(0.0), tol(0.01), maxper(1000000), drive_kind(DRIVE_STEPS),
     every(0.0), nsteps(0), drive_index(0), drive_ivar(-1), drive_fix(nullptr), erode_igroup(-1),
     erode_groupbit(0), epoch_index(-1), epoch_offset(0), window_given(0), xlo(0.0), xhi(0.0),
-    length(0.0), settle_steps(0), settle_gamma(0.0), rng(0), epoch(0), ndep(0.0), nero(0.0),
-    adep(0.0), aero(0.0), abyp(0.0), carry(0.0), t_last(0.0), t_last_set(0), next_drive(0.0),
-    next_set(0), last_level(0.0), last_n(0.0), last_area(0.0), pending(0), drive_at_decision(0.0)
+    foreset(-1.0), length(0.0), length_given(0), settle_steps(0), settle_gamma(0.0), rng(0),
+    epoch(0), ndep(0.0), nero(0.0), adep(0.0), aero(0.0), abyp(0.0), carry(0.0), t_last(0.0),
+    t_last_set(0), next_drive(0.0), next_set(0), last_level(0.0), last_n(0.0), last_area(0.0),
+    last_xlo(0.0), last_xhi(0.0), pending(0), drive_at_decision(0.0)
 {
   up[0] = up[1] = along[0] = along[1] = 0.0;
   usage = fmt::format(
       "fix ID group {} fill|rate R|none type T base LEVEL every N [drive SOURCE] rmin R1 rmax R2 "
       "density RHO seed S [dist uniform|paper] [overlap TOL] [epoch i_NAME] [offset K] "
-      "[erode LEVEL] [erode_group G] [group G] [x XLO XHI] [length L] [down DX DY] "
+      "[erode LEVEL] [erode_group G] [group G] [x XLO XHI] [foreset S] [length L] [down DX DY] "
       "[settle N GAMMA] [maxper N]",
       style);
   if (domain->dimension != 2) error->all(FLERR, "Fix {} requires dimension 2 (discs)", style);
@@ -243,17 +245,29 @@ FixSaltdemSediment::FixSaltdemSediment(LAMMPS *lmp, int narg, char **arg) :
       iarg += 2;
     } else if (kw == "x") {
       need(2);
-      xlo = num("x", arg[iarg + 1]);
-      xhi = num("x", arg[iarg + 2]);
-      if (xlo >= xhi)
+      parse_window_end(wlo, arg[iarg + 1]);
+      parse_window_end(whi, arg[iarg + 2]);
+      xlo = wlo.value;
+      xhi = whi.value;
+      if (wlo.kind == Level::CONSTANT && whi.kind == Level::CONSTANT && xlo >= xhi)
         error->all(FLERR, "Fix {}: x {} {}: the window's low end must be below its high end", style,
                    xlo, xhi);
       window_given = 1;
       iarg += 3;
+    } else if (kw == "foreset") {
+      need(1);
+      foreset = num("foreset", arg[iarg + 1]);
+      if (foreset < 0.0)
+        error->all(FLERR,
+                   "Fix {}: foreset = {} must be >= 0 (the fall of the base level per unit "
+                   "length outside the window, the tangent of the foreset dip)",
+                   style, foreset);
+      iarg += 2;
     } else if (kw == "length") {
       need(1);
       length = num("length", arg[iarg + 1]);
       if (length <= 0.0) error->all(FLERR, "Fix {}: length = {} must be > 0", style, length);
+      length_given = 1;
       iarg += 2;
     } else if (kw == "down") {
       need(2);
@@ -315,6 +329,10 @@ FixSaltdemSediment::FixSaltdemSediment(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR, "Fix {}: keyword 'seed' is required; usage: {}", style, usage);
   } else if (erode.kind == Level::NONE)
     error->all(FLERR, "Fix {}: mode none needs 'erode LEVEL' (it only erodes)", style);
+  if (foreset >= 0.0 && !window_given)
+    error->all(FLERR,
+               "Fix {}: foreset needs the window 'x XLO XHI' (the base level falls outside it)",
+               style);
   if (erode_igroup < 0) erode_igroup = igroup;
   erode_groupbit = group->bitmask[erode_igroup];
   // constant levels inside the box (variables are checked when they are used)
@@ -326,7 +344,7 @@ FixSaltdemSediment::FixSaltdemSediment(LAMMPS *lmp, int narg, char **arg) :
   force_reneighbor = 1;
   next_reneighbor = -1;
   vector_flag = 1;
-  size_vector = 9;
+  size_vector = 11;
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
@@ -359,6 +377,53 @@ void FixSaltdemSediment::parse_level(Level &l, const char *text, const char *kw)
     l.kind = Level::CONSTANT;
     l.value = SaltDEM::numeric(FLERR, text, fmt::format("Fix {}: {} level", style, kw), lmp);
   }
+}
+
+/* an end of the window 'x': a number (m) or v_NAME, an equal-style variable (a front that moves) */
+
+void FixSaltdemSediment::parse_window_end(Level &l, const char *text)
+{
+  if (strncmp(text, "v_", 2) == 0) {
+    l.name = text + 2;
+    l.kind = Level::EQUAL;
+    const int ivar = input->variable->find(l.name.c_str());
+    if (ivar < 0) error->all(FLERR, "Fix {}: x window variable {} does not exist", style, l.name);
+    if (!input->variable->equalstyle(ivar))
+      error->all(FLERR,
+                 "Fix {}: x window variable {} must be equal-style (one position for the "
+                 "whole window end)",
+                 style, l.name);
+  } else {
+    if (!utils::is_double(text))
+      error->all(FLERR,
+                 "Fix {}: x window end '{}' must be a number (m) or v_NAME (an equal-style "
+                 "variable)",
+                 style, text);
+    l.kind = Level::CONSTANT;
+    l.value = SaltDEM::numeric(FLERR, text, fmt::format("Fix {}: x", style), lmp);
+  }
+}
+
+/* the window at an interval: its variable ends evaluated now */
+
+void FixSaltdemSediment::update_window()
+{
+  if (!window_given) return;
+  for (Level *l : {&wlo, &whi}) {
+    if (l->kind != Level::EQUAL) continue;
+    const double v = input->variable->compute_equal(l->ivar);
+    if (!std::isfinite(v))
+      error->all(FLERR, "Fix {} {}: x window variable {} is not finite ({})", style, id, l->name,
+                 v);
+    (l == &wlo ? xlo : xhi) = v;
+  }
+  if (xlo >= xhi)
+    error->all(FLERR,
+               "Fix {} {}: the window x {} {} at step {} ({} to {} m): its low end must be below "
+               "its high end",
+               style, id, wlo.kind == Level::EQUAL ? "v_" + wlo.name : fmt::format("{}", wlo.value),
+               whi.kind == Level::EQUAL ? "v_" + whi.name : fmt::format("{}", whi.value),
+               update->ntimestep, xlo, xhi);
 }
 
 void FixSaltdemSediment::resolve_level(Level &l, const char *kw)
@@ -440,6 +505,14 @@ void FixSaltdemSediment::init()
   }
   resolve_level(base, "base");
   resolve_level(erode, "erode");
+  for (Level *l : {&wlo, &whi}) {
+    if (l->kind != Level::EQUAL) continue;
+    l->ivar = input->variable->find(l->name.c_str());
+    if (l->ivar < 0)
+      error->all(FLERR, "Fix {}: x window variable {} does not exist", style, l->name);
+    if (!input->variable->equalstyle(l->ivar))
+      error->all(FLERR, "Fix {}: x window variable {} is no longer equal-style", style, l->name);
+  }
 
   if (!epoch_name.empty()) {
     int flag, cols;
@@ -513,7 +586,6 @@ void FixSaltdemSediment::init()
                  "step",
                  style, id, density, mnew, ntype, mold);
   }
-  if (mode == MODE_RATE && length == 0.0) length = xhi - xlo;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -578,6 +650,7 @@ void FixSaltdemSediment::pre_exchange()
   // variables first, while the atom map and the ghosts are intact
   const double time = now();
   const double level = (mode != MODE_NONE) ? level_value(base, "base") : 0.0;
+  if (mode != MODE_NONE) update_window();
   std::vector<double> elev;
   double econst = 0.0;
   if (erode.kind == Level::ATOM) {
@@ -600,6 +673,8 @@ void FixSaltdemSediment::pre_exchange()
   last_n = last_area = 0.0;
   if (mode != MODE_NONE) {
     last_level = level;
+    last_xlo = xlo;
+    last_xhi = xhi;
     deposition(level, time);
   }
 
@@ -608,13 +683,19 @@ void FixSaltdemSediment::pre_exchange()
     atom->map_set();
   }
 
-  if (comm->me == 0)
-    utils::logmesg(lmp, "fix {} {}: epoch {} at step {}: deposited {} discs ({:.10g} m^2){}{}\n",
-                   style, id, epoch, update->ntimestep, (bigint) last_n, last_area,
-                   mode != MODE_NONE ? fmt::format(" below base level {:.6g} m", last_level) : "",
-                   erode.kind != Level::NONE ? fmt::format(", eroded {} discs ({:.10g} m^2)",
-                                                           (bigint) (nero - nero0), aero - aero0)
-                                             : "");
+  if (comm->me == 0) {
+    std::string where;
+    if (mode != MODE_NONE) {
+      where = fmt::format(" below base level {:.6g} m", last_level);
+      if (wlo.kind == Level::EQUAL || whi.kind == Level::EQUAL)
+        where += fmt::format(" in x {:.6g} to {:.6g} m", xlo, xhi);
+    }
+    if (erode.kind != Level::NONE)
+      where +=
+          fmt::format(", eroded {} discs ({:.10g} m^2)", (bigint) (nero - nero0), aero - aero0);
+    utils::logmesg(lmp, "fix {} {}: epoch {} at step {}: deposited {} discs ({:.10g} m^2){}\n",
+                   style, id, epoch, update->ntimestep, (bigint) last_n, last_area, where);
+  }
 }
 
 /* delete the discs of the erosion group whose centre lies above the erosion level */
@@ -701,7 +782,7 @@ void FixSaltdemSediment::deposition(double level, double time)
 {
   double target = 0.0;
   if (mode == MODE_RATE) {
-    target = rate * length * (time - t_last) + carry;
+    target = rate * (length_given ? length : xhi - xlo) * (time - t_last) + carry;
     t_last = time;
     carry = 0.0;
     if (target <= 0.0) {
@@ -725,13 +806,27 @@ void FixSaltdemSediment::deposition(double level, double time)
   MPI_Allreduce(&tloc, &maxtag, 1, MPI_LMP_TAGINT, MPI_MAX, world);
   const double rbig = MAX(rmax, rall);
   const double w = 2.0 * rbig, depth = 4.0 * rbig;
-  const double X0 = xlo - w;
-  const double span = std::ceil((xhi - xlo) / w) + 2.0;
+  // the columns span the window, or with a foreset (deposits outside the window) the box
+  double glo = xlo, ghi = xhi;
+  if (foreset >= 0.0)
+    for (int a = 0; a < 2; a++)
+      for (int b = 0; b < 2; b++) {
+        const double sb = along[0] * (a ? domain->boxhi[0] : domain->boxlo[0]) +
+            along[1] * (b ? domain->boxhi[1] : domain->boxlo[1]);
+        glo = MIN(glo, sb);
+        ghi = MAX(ghi, sb);
+      }
+  const double X0 = glo - w;
+  const double span = std::ceil((ghi - glo) / w) + 2.0;
   if (span > 1.0e7)
     error->all(FLERR,
                "Fix {} {}: the window ({} to {} m) is more than 1e7 columns of {} m: give "
                "a narrower 'x'",
-               style, id, xlo, xhi, w);
+               style, id, glo, ghi, w);
+  // the base level at X: flat in the window, falling by 'foreset' per unit length outside it
+  auto level_at = [&](double X) {
+    return level - foreset * MAX(0.0, MAX(xlo - X, X - xhi));
+  };
   const int ncol = (int) span;
   auto column = [&](double X) -> int {
     const double c = std::floor((X - X0) / w);
@@ -867,7 +962,10 @@ void FixSaltdemSediment::deposition(double level, double time)
         if (PY > level) continue;
         if (PY > bestY || (PY == bestY && PX >= bestX)) continue;
         if (PX <= MIN(di.X, dj.X) || PX >= MAX(di.X, dj.X)) continue;    // would roll off
-        if (PX - r < xlo || PX + r > xhi) continue;
+        if (foreset < 0.0) {
+          if (PX - r < xlo || PX + r > xhi) continue;
+        } else if (PY > level_at(PX))
+          continue;
         const double px = along[0] * PX + up[0] * PY, py = along[1] * PX + up[1] * PY;
         if (px - r < boxlo0 || px + r > boxhi0 || py - r < boxlo1 || py + r > boxhi1) continue;
         const int cp = column(PX);
@@ -1021,8 +1119,12 @@ double FixSaltdemSediment::compute_vector(int n)
       return last_level;
     case 7:
       return last_n;
-    default:
+    case 8:
       return last_area;
+    case 9:
+      return last_xlo;
+    default:
+      return last_xhi;
   }
 }
 
@@ -1048,6 +1150,7 @@ void FixSaltdemSediment::write_restart(FILE *fp)
                               (double) settles.size()};
   for (const auto &s : settles)
     list.insert(list.end(), {(double) s.lo, (double) s.hi, (double) s.end});
+  list.insert(list.end(), {last_xlo, last_xhi});
   if (comm->me == 0) {
     int size = (int) (list.size() * sizeof(double));
     fwrite(&size, sizeof(int), 1, fp);
@@ -1058,7 +1161,7 @@ void FixSaltdemSediment::write_restart(FILE *fp)
 void FixSaltdemSediment::restart(char *buf)
 {
   auto list = (double *) buf;
-  if (list[0] != RESTART_TAG)
+  if (list[0] != RESTART_TAG && list[0] != RESTART_TAG_V1)
     error->all(FLERR, "Fix {} {}: the restart file's state is not one of this fix", style, id);
   int k = 1;
   epoch = (int) list[k++];
@@ -1081,4 +1184,8 @@ void FixSaltdemSediment::restart(char *buf)
   settles.clear();
   for (int q = 0; q < ns; q++, k += 3)
     settles.push_back({(tagint) list[k], (tagint) list[k + 1], (bigint) list[k + 2]});
+  if (list[0] == RESTART_TAG) {
+    last_xlo = list[k++];
+    last_xhi = list[k++];
+  }
 }

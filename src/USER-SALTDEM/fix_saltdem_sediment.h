@@ -83,8 +83,12 @@ class FixSaltdemSediment : public Fix {
   std::string epoch_name;           // per-atom integer (fix property/atom i_NAME) for the epoch
   int epoch_index, epoch_offset;
   int window_given;
-  double xlo, xhi;           // deposition window along the 'along' axis (default: the box)
-  double length;             // rate mode: length the rate is given per (default xhi - xlo)
+  Level wlo, whi;     // the window's ends: constants or equal-style variables (a front)
+  double xlo, xhi;    // deposition window along the 'along' axis (default: the box)
+  double foreset;     // outside the window the base level falls by this per unit length
+                      // (< 0: no deposit outside the window)
+  double length;      // rate mode: length the rate is given per (default xhi - xlo)
+  int length_given;
   double up[2], along[2];    // frame of gravity: up = -g / |g|, along = (up_y, -up_x)
   int settle_steps;          // damped settling of the new discs for this many steps ...
   double settle_gamma;       // ... with a drag -gamma v (and -gamma r^2 omega)
@@ -100,8 +104,9 @@ class FixSaltdemSediment : public Fix {
   int t_last_set;
   double next_drive;    // drive displacement of the next interval
   int next_set;
-  double last_level;           // base level at the last interval
-  double last_n, last_area;    // deposited in the last interval
+  double last_level;            // base level at the last interval
+  double last_n, last_area;     // deposited in the last interval
+  double last_xlo, last_xhi;    // the window at the last interval
   struct Settle {
     tagint lo, hi;    // tags of the discs of one interval
     bigint end;       // last step of their settling
@@ -118,6 +123,8 @@ class FixSaltdemSediment : public Fix {
   void resolve_level(Level &, const char *kw);
   double level_value(Level &, const char *kw);
   void check_in_box(double level, const char *kw);
+  void parse_window_end(Level &, const char *text);
+  void update_window();
   double drive_value();
   void decide();
   bool has_cover_law(int itype);

@@ -103,6 +103,11 @@ def test_warns_when_inertia_matters(lmp):
     ("lambda 1e9 natural 5e17 rate 0.05 length 1000 density 2200 inertia 0.5", ["inertia = 0.5"]),
     ("scale 1e9 natural 5e17", ["expected 'lambda'"]),
     ("lambda 1e9 natural", ["saltdem/viscosity natural"]),
+    ("lambda 1e9 natural 5e17 rate 0.05 length 1000 density 2200 contrast 0", ["contrast = 0"]),
+    ("lambda 1e9 natural 5e17 rate 0.05 length 1000 density 2200 gravity 9.81",
+     ["'gravity' is used with 'contrast' only"]),
+    ("lambda 1e9 natural 5e17 rate 0.05 length 1000 density 2200 contrast 240 gravity -1",
+     ["gravity = -1"]),
 ])
 def test_errors(lmp, args, words):
     r = lmp(BASE + f"fix scale all saltdem/viscosity {args}\nrun 0\n", dt=1e-6)
@@ -161,3 +166,48 @@ def test_inertia_keyword_must_agree_with_the_integrator(lmp, given, ok):
     else:
         assert_error(r, "saltdem/viscosity", "inertia 10 differs from the inertia factor 20",
                      "drop the keyword")
+
+
+def test_buoyancy_stress_against_the_viscous_stress(lmp):
+    """contrast 240 kg/m^3 over 1000 m: drho g L = 2.3544e6 Pa against eta V / L = 5e8 x 0.05 /
+    1000 = 2.5e4 Pa (ratio 94.18), buoyancy time eta/(drho g L) = 212.4 s (natural: lambda x that,
+    6730 years), Re_b = S rho drho g L^3 / eta^2 = 2160 x 2.3544e6 x 1e6 / 2.5e17 = 0.02034 (S 1);
+    a denser salt (contrast -240) reports the same magnitudes with the stress's sign; without
+    contrast 8, 10-12 are 0 and 9 is still the viscous stress"""
+    vals = "f_scale[8] f_scale[9] f_scale[10] f_scale[11] f_scale[12]"
+    fix = ("fix scale all saltdem/viscosity lambda 1e9 model 5e8 rate 0.05 length 1000 "
+           "density 2160 contrast {}\nthermo_style custom step " + vals + "\nrun 0\n")
+    r = lmp(BASE + fix.format(240), dt=1e-6)
+    check_ok(r)
+    t = r.thermo(0)
+    got = [t[k][-1] for k in vals.split()]
+    assert got == pytest.approx([2.3544e6, 2.5e4, 94.176, 212.3683, 0.0203420], rel=1e-4)
+    assert re.search(r"buoyancy: density contrast 240 .* stress drho g L 2\.354e\+06 against "
+                     r"the viscous stress eta V/L 2\.5e\+04 \(Pa\), ratio 94\.18", r.out)
+    assert "6730 years (natural)" in r.out
+    r = lmp(BASE + fix.format(-240), dt=1e-6)
+    check_ok(r)
+    t = r.thermo(0)
+    assert [t[k][-1] for k in vals.split()] == pytest.approx(
+        [-2.3544e6, 2.5e4, -94.176, 212.3683, 0.0203420], rel=1e-4)
+    r = lmp(BASE + fix.format("").replace(" contrast ", ""), dt=1e-6)
+    check_ok(r)
+    t = r.thermo(0)
+    assert [t[k][-1] for k in vals.split()] == [0.0, pytest.approx(2.5e4), 0.0, 0.0, 0.0]
+    assert "buoyancy:" not in r.out
+
+
+def test_buoyancy_needs_gravity_outside_si(lmp):
+    """under units cgs the default 9.81 m/s^2 would be wrong: the fix asks for 'gravity'"""
+    deck = BASE.replace("units si", "units cgs").replace("density/disc 2200", "density/disc 2.2")
+    fix = ("fix scale all saltdem/viscosity lambda 1e9 model 5e9 rate 5 length 1e5 density 2.16 "
+           "contrast 0.24{}\nrun 0\n")
+    assert_error(lmp(deck + fix.format(""), dt=1e-6), "saltdem/viscosity", "'gravity g'", "cgs")
+    r = lmp(deck + fix.format(" gravity 981") + "thermo_style custom step f_scale[8] f_scale[10]\nrun 0\n",
+            dt=1e-9)
+    check_ok(r)
+    t = r.thermo(-1)
+    # cgs: 0.24 g/cm^3 x 981 cm/s^2 x 1e5 cm = 2.3544e7 dyn/cm^2 (= 2.3544e6 Pa), over
+    # eta V / L = 5e9 x 5 / 1e5 = 2.5e5 dyn/cm^2
+    assert t["f_scale[8]"][-1] == pytest.approx(2.3544e7, rel=1e-6)
+    assert t["f_scale[10]"][-1] == pytest.approx(94.176, rel=1e-4)

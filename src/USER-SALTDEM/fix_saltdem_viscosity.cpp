@@ -20,7 +20,9 @@
    lambda times the natural ones, its time 1/lambda of the natural time, and
    Re_model = lambda^2 Re_natural.  The fix sets the viscosity of every type
    pair of pair style saltdem/viscous (through Pair::extract("eta")) and
-   reports the numbers that tie the model to nature.
+   reports the numbers that tie the model to nature; with a density contrast
+   (keyword contrast) also the buoyancy stress drho g L against the viscous
+   stress eta V / L.
 ------------------------------------------------------------------------- */
 
 #include "fix_saltdem_viscosity.h"
@@ -44,8 +46,8 @@ using namespace FixConst;
 
 FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), lambda(0.0), eta_model(0.0), eta_natural(0.0), rate(0.0), length(0.0),
-    density(0.0), inertia(1.0), inertia_given(0.0), warn_re(0.1), t0(0.0), npairs(0), reported(0.0),
-    ftm2v(1.0), second(1.0), metre(1.0)
+    density(0.0), contrast(0.0), gravity(0.0), inertia(1.0), inertia_given(0.0), warn_re(0.1),
+    t0(0.0), npairs(0), reported(0.0), ftm2v(1.0), second(1.0), metre(1.0)
 {
   // natural time in years and rates in m/ka need the deck's time and length in SI: from
   // LAMMPS's unit system (1 fs and 1 Angstrom in the deck's units); lj has none
@@ -60,7 +62,8 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
   metre = 1.0e-10 / force->angstrom;
 
   const std::string usage = fmt::format("fix ID group {} lambda L (natural eta | model eta) rate "
-                                        "V length L density rho [inertia S] [warn Re]",
+                                        "V length L density rho [contrast drho [gravity g]] "
+                                        "[inertia S] [warn Re]",
                                         style);
   if (narg < 5) utils::missing_cmd_args(FLERR, fmt::format("fix {}", style), error);
   if (strcmp(arg[3], "lambda") != 0)
@@ -90,6 +93,15 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
       length = positive(v);
     else if (kw == "density")
       density = positive(v);
+    else if (kw == "contrast") {
+      if (v == 0.0)
+        error->all(FLERR,
+                   "Fix {}: contrast = 0: give the density of the overburden minus that of "
+                   "the salt (negative when the salt is the denser), or leave the keyword out",
+                   style);
+      contrast = v;
+    } else if (kw == "gravity")
+      gravity = positive(v);
     else if (kw == "inertia") {
       if (v < 1.0) error->all(FLERR, "Fix {}: inertia = {} must be >= 1", style, v);
       inertia_given = v;
@@ -105,6 +117,17 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                      std::make_pair("density", density)})
     if (need.second <= 0.0)
       error->all(FLERR, "Fix {}: keyword '{}' is required; usage: {}", style, need.first, usage);
+  // g: 9.81 m/s^2 under si, given in the deck's units otherwise
+  if (contrast != 0.0 && gravity == 0.0) {
+    if (strcmp(update->unit_style, "si") != 0)
+      error->all(FLERR,
+                 "Fix {}: the buoyancy stress needs 'gravity g' in the deck's units (units "
+                 "{}); the default 9.81 applies under units si only",
+                 style, update->unit_style);
+    gravity = 9.81;
+  }
+  if (gravity > 0.0 && contrast == 0.0)
+    error->all(FLERR, "Fix {}: 'gravity' is used with 'contrast' only; usage: {}", style, usage);
   if (eta_natural > 0.0)
     eta_model = eta_natural / lambda;
   else
@@ -150,7 +173,7 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
 
   t0 = model_time();
   vector_flag = 1;
-  size_vector = 7;
+  size_vector = 12;
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
@@ -195,13 +218,21 @@ double FixSaltdemViscosity::salt_inertia(const std::vector<Pair *> &salts)
 void FixSaltdemViscosity::check_finite()
 {
   for (double q : {reynolds_model(), reynolds_natural(), natural_rate(), strain_rate_model(),
-                   strain_rate_natural(), lambda * second / YEAR})
+                   strain_rate_natural(), lambda * second / YEAR, viscous_stress()})
     if (!std::isfinite(q) || q == 0.0)
       error->all(FLERR,
                  "Fix {}: the Reynolds numbers, strain rates and time scale from lambda "
                  "= {}, rate = {}, length = {}, density = {}, inertia = {} and the viscosity {} "
                  "overflow or vanish ({}); use values of physical size",
                  style, lambda, rate, length, density, inertia, eta_model, q);
+  if (contrast != 0.0)
+    for (double q : {buoyancy_stress(), buoyancy_time(), reynolds_buoyancy()})
+      if (!std::isfinite(q) || q == 0.0)
+        error->all(FLERR,
+                   "Fix {}: the buoyancy stress, time and Reynolds number from contrast = {}, "
+                   "gravity = {}, length = {}, density = {}, inertia = {} and the viscosity {} "
+                   "overflow or vanish ({}); use values of physical size",
+                   style, contrast, gravity, length, density, inertia, eta_model, q);
 }
 
 int FixSaltdemViscosity::setmask()
@@ -242,6 +273,15 @@ void FixSaltdemViscosity::init()
                    unit_label("m/s"), natural_rate(), length, unit_label("m"), density,
                    unit_label("kg/m^3"), inertia, reynolds_model(), reynolds_natural(),
                    strain_rate_model(), strain_rate_natural(), lambda / YEAR);
+  if (comm->me == 0 && reported != inertia && contrast != 0.0)
+    utils::logmesg(lmp,
+                   "  buoyancy: density contrast {:.4g} ({}), gravity {:.4g} ({}): stress "
+                   "drho g L {:.4g} against the viscous stress eta V/L {:.4g} ({}), ratio {:.4g}\n"
+                   "  buoyancy time eta/(|drho| g L) {:.4g} s (model), {:.4g} years (natural); "
+                   "buoyancy Reynolds number S rho |drho| g L^3/eta^2 {:.3g}\n",
+                   contrast, unit_label("kg/m^3"), gravity, unit_label("m/s^2"), buoyancy_stress(),
+                   viscous_stress(), unit_label("Pa"), buoyancy_stress() / viscous_stress(),
+                   buoyancy_time(), lambda * buoyancy_time() / YEAR, reynolds_buoyancy());
   reported = inertia;
 
   const double re = reynolds_model();
@@ -251,6 +291,20 @@ void FixSaltdemViscosity::init()
                    "inertia is no longer negligible, the flow is not the scaled natural flow. "
                    "Lower the rate, the inertia factor or lambda",
                    style, re, warn_re);
+}
+
+/* eta_model / (|drho| g L) in s, and S rho |drho| g L^3 / eta_model^2 (0 without contrast) */
+
+double FixSaltdemViscosity::buoyancy_time() const
+{
+  return (contrast != 0.0) ? eta_model / fabs(buoyancy_stress()) * second : 0.0;
+}
+
+double FixSaltdemViscosity::reynolds_buoyancy() const
+{
+  return (contrast != 0.0) ? density * inertia * fabs(buoyancy_stress()) * length * length /
+          (eta_model * eta_model * ftm2v)
+                           : 0.0;
 }
 
 /* the unit of an input in SI, or the note that it is in the deck's units */
@@ -267,7 +321,11 @@ double FixSaltdemViscosity::model_time() const
 
 /* 1 Re_model (with the inertia factor), 2 Re_natural, 3 model time since
    the fix (s), 4 natural time since the fix (years), 5 natural rate (m/ka),
-   6 model strain rate V/L (1/s), 7 natural strain rate (1/s) */
+   6 model strain rate V/L (1/s), 7 natural strain rate (1/s); 8 buoyancy
+   stress drho g L, 9 viscous stress eta_model V/L (the deck's pressure units,
+   Pa under si), 10 their ratio, 11 buoyancy time eta_model/(|drho| g L) (s),
+   12 buoyancy Reynolds number S rho |drho| g L^3 / eta_model^2 (8, 10-12:
+   0 without contrast) */
 
 double FixSaltdemViscosity::compute_vector(int n)
 {
@@ -286,6 +344,16 @@ double FixSaltdemViscosity::compute_vector(int n)
       return strain_rate_model();
     case 6:
       return strain_rate_natural();
+    case 7:
+      return buoyancy_stress();
+    case 8:
+      return viscous_stress();
+    case 9:
+      return buoyancy_stress() / viscous_stress();
+    case 10:
+      return buoyancy_time();
+    case 11:
+      return reynolds_buoyancy();
   }
   return 0.0;
 }

@@ -41,10 +41,12 @@ class FixSaltdemViscosity : public Fix {
  protected:
   double lambda;    // viscosity scaling factor: eta_model = eta_natural / lambda
   double eta_model, eta_natural;
-  double rate;       // driving velocity of the model (length/time)
-  double length;     // length scale of the flow (m)
-  double density;    // density of the viscous material (mass/volume)
-  double inertia;    // inertia factor S of the salt's discs (fix saltdem/nve, through the pair)
+  double rate;        // driving velocity of the model (length/time)
+  double length;      // length scale of the flow (m)
+  double density;     // density of the viscous material (mass/volume)
+  double contrast;    // density of the overburden minus the salt's (0: not given)
+  double gravity;     // acceleration of gravity (deck's units; 9.81 under si)
+  double inertia;     // inertia factor S of the salt's discs (fix saltdem/nve, through the pair)
   double inertia_given;    // the keyword 'inertia' (0: not given), which must agree with S
   double warn_re;          // warn when the model Reynolds number exceeds this
   double t0;               // model time when the fix was defined (natural time counts from it)
@@ -68,6 +70,12 @@ class FixSaltdemViscosity : public Fix {
   double natural_rate() const { return rate / lambda * metre / second * YEAR * 1000.0; }
   double strain_rate_model() const { return rate / length / second; }
   double strain_rate_natural() const { return rate / (lambda * length) / second; }
+  // buoyancy: the stress drho g L against the viscous stress eta V / L (deck's pressure units),
+  // the buoyancy time eta / (|drho| g L) (s) and Reynolds number S rho |drho| g L^3 / eta^2
+  double buoyancy_stress() const { return contrast * gravity * length / ftm2v; }
+  double viscous_stress() const { return eta_model * rate / length; }
+  double buoyancy_time() const;
+  double reynolds_buoyancy() const;
   static constexpr double YEAR = 365.25 * 24.0 * 3600.0;    // s
   static constexpr double RESTART_VERSION = 1.0;            // layout of the restart data
 };

@@ -19,6 +19,9 @@ prints, per run: the growth rate fitted to the interface's first Fourier mode a(
 over [T1, T2] (in t_b), their ratio to the analytic rate, the wall offset that would explain
 the rate, the initial amplitude, and the vrms peak and its time (if the run reached it), raw and
 moved to the benchmark's initial amplitude 0.02.
+    /usr/bin/python3 bench/rt_vankeken.py --poiseuille DUMP ETA GX H RHO_PHI
+fits the no-slip planes and the viscosity to the dump of a Poiseuille run of the same box
+(-var gravity poiseuille -var rho_light 2400 -var dump 1).
 """
 import argparse
 import math
@@ -34,6 +37,7 @@ AMP = 0.02               # initial perturbation / height
 GAMMA_VK = 0.01094019
 VRMS_PEAK_VK = 0.0030916
 T_PEAK_VK = 208.99
+PEAK_AFTER = 50.0        # t_b: the vrms peak is looked for after the start's transient
 
 
 def _basis(k, y):
@@ -123,9 +127,9 @@ def fit_rate(t, y, t1, t2):
 
 
 def peak(t, v, tmin):
-    """maximum of v after tmin (past the start's transient; a parabola through the largest
-    sample and its neighbours), or None if the largest sample is the last (the run stopped
-    before the peak)"""
+    """maximum of v after tmin (a parabola through the largest sample and its neighbours), or
+    None if the largest sample is the first or the last after tmin (the run stopped before the
+    peak)"""
     i = int(np.argmax(np.where(t >= tmin, v, -np.inf)))
     if t[i] <= tmin or i == len(v) - 1:
         return None
@@ -147,7 +151,7 @@ def analyse(path, t1, t2):
     n = head.get("n", float("nan"))
     res = dict(path=path, n=n, Re_b=head.get("Re_b"), gamma_a=g_a, gamma_v=g_v, a0=a0,
                a_start=amp[0], vrms0=v0, delta=wall_offset(g_a), t_end=t[-1])
-    pk = peak(t, vrms, t1)
+    pk = peak(t, vrms, PEAK_AFTER)
     if pk:
         res["t_peak"], res["vrms_peak"] = pk
         # the same run started from the benchmark's amplitude: earlier by ln(0.02 / a0) / gamma
@@ -155,12 +159,39 @@ def analyse(path, t1, t2):
     return res
 
 
+def poiseuille(dump, height):
+    """the no-slip planes of a Poiseuille run (-var gravity poiseuille -var dump 1): the fit of
+    u = A (y - y0)(y1 - y) to the fluid's velocities; returns y0, y1 - height and A (the
+    viscosity is rho_phi gx / (2 A))"""
+    from scipy.optimize import curve_fit
+    with open(dump) as f:
+        lines = f.read().splitlines()
+    i = lines.index(next(l for l in lines if l.startswith("ITEM: ATOMS")))
+    cols = lines[i].split()[2:]
+    a = np.array([[float(w) for w in l.split()] for l in lines[i + 1:]])
+    fluid = a[a[:, cols.index("type")] < 3]
+    y, u = fluid[:, cols.index("y")], fluid[:, cols.index("vx")]
+    p, _ = curve_fit(lambda yy, amp, y0, y1: amp * (yy - y0) * (y1 - yy), y, u,
+                     p0=(u.max() * 4 / height ** 2, 0.0, height))
+    return p[1], p[2] - height, p[0]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("runs", nargs="*")
     ap.add_argument("--fit", nargs=2, type=float, default=(5.0, 40.0), metavar=("T1", "T2"),
                     help="fit window in t_b (default 5 40)")
+    ap.add_argument("--poiseuille", nargs=5, metavar=("DUMP", "ETA", "GX", "H", "RHO_PHI"),
+                    help="fit the no-slip planes and the viscosity of a Poiseuille run's dump "
+                         "(RHO_PHI: the fluid's mass per area, disc density x packing fraction)")
     args = ap.parse_args(argv)
+    if args.poiseuille:
+        dump, eta, gx, height, rho_phi = args.poiseuille
+        eta, gx, height, rho_phi = map(float, (eta, gx, height, rho_phi))
+        y0, y1, amp = poiseuille(dump, height)
+        print(f"Poiseuille: no-slip planes at y = {y0:.2f} and H + {y1:.2f}; "
+              f"viscosity {rho_phi * gx / (2 * amp) / eta:.4f} eta")
+        return 0
     g = growth_rate()
     vpa = vrms_per_amplitude()
     print(f"analytic: gamma t_b = {g:.7f} (van Keken et al. 1997: {GAMMA_VK}), "

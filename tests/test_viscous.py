@@ -220,8 +220,19 @@ class Snapshot:
         self.W, self.gradr = (np.where(self.pair, w, 0.0) for w in wendland(self.r, h))
         self.rho = self.m * wendland(0.0, h)[0] + self.W @ self.m
         self.salt = self.type == 2
+        # a full kernel: the kernel-weighted first moment |sum_j m_j w d| below 0.1 of
+        # sum_j m_j w |d| (w = |W'|/r up to a constant); the reference density is the mean
+        # kernel density of a type's particles with a full kernel
+        g = self.gradr * self.m[None, :]
+        first = np.hypot((g * dx).sum(1), (g * dy).sum(1))
+        self.full = first < 0.1 * (g * self.r).sum(1)
 
-    def forces(self, eta, K, kn, knw, rho0, wall_fluid=True):
+    def rho0(self, t):
+        """over all of the type's particles where none has a full kernel (the walls)"""
+        k = (self.type == t) & self.full
+        return self.rho[k if k.any() else self.type == t].mean()
+
+    def forces(self, eta, K, kn, knw, rho0, wall_fluid=True, fill_max=1.0):
         """Force on each particle: Morris viscosity + SPH pressure + elastic core.
         Salt (type 2) is FLUID; walls (type 3) are FLUID too (wall_fluid) or have
         a 'contact' law of their own, with a FLUID salt-wall pair: then they
@@ -233,13 +244,28 @@ class Snapshot:
         rho = np.where(fluid, self.rhoc, rho0[2])
         P = np.where(carries, K * (rho / np.where(carries, r0, 1.0) - 1.0), 0.0)
         a = self.m * P / rho ** 2
+        # the boundary fill of a fluid particle: (1 - wf / rho) rho_b / wb in [1, fill_max], wf and
+        # wb its kernel sums sum_j m_j W over its fluid (itself included) and its boundary
+        # partners, rho_b the salt's rho0; a boundary partner counts fill times its mass and
+        # volume in the pair
+        fi, fj = fluid[:, None], fluid[None, :]
+        wf = self.m * wendland(0.0, self.h)[0] + (self.W * fj) @ self.m
+        wb = (self.W * ~fj) @ self.m
+        fill = np.where(fluid & (wb > 0),
+                        np.clip((1 - wf / rho) * rho0[2] / np.where(wb > 0, wb, 1.0), 1.0, fill_max),
+                        1.0)
+        c = np.where(fi & ~fj, fill[:, None], np.where(fj & ~fi, fill[None, :], 1.0))
         vol = self.m / rho
-        mi, mj = self.m[:, None], self.m[None, :]
+        mi = self.m[:, None] * np.where(fi, 1.0, c)
+        mj = self.m[None, :] * np.where(fj, 1.0, c)
+        voli = vol[:, None] * np.where(fi, 1.0, c)
+        volj = vol[None, :] * np.where(fj, 1.0, c)
         ci, cj = carries[:, None], carries[None, :]
         # the pressure matrix A = a L, L = (S / rho)^-1 with the kernel moment
-        # S_i = sum_j m_j |W'|/r d d (d = x_i - x_j), the plain a I where det(S / rho) < 0.1
+        # S_i = sum_j m_j |W'|/r d d (d = x_i - x_j, boundary partners with the fill), the
+        # plain a I where det(S / rho) < 0.1
         d = self.n * self.r[..., None]
-        S = np.einsum("ij,j,ija,ijb->iab", self.gradr, self.m, d, d) / rho[:, None, None]
+        S = np.einsum("ij,ij,ija,ijb->iab", self.gradr, mj, d, d) / rho[:, None, None]
         det = np.linalg.det(S)
         ok = det >= 0.1
         L = np.where(ok[:, None, None], np.linalg.inv(np.where(ok[:, None, None], S, np.eye(2))),
@@ -254,7 +280,7 @@ class Snapshot:
         knij = np.where((self.type[:, None] == 3) | (self.type[None, :] == 3), knw, kn)
         delta = self.radius[:, None] + self.radius[None, :] - self.r
         fel = np.where(self.pair & (delta > 0), knij * delta, 0.0)
-        g = 2.0 * CORRECTION * eta * vol[:, None] * vol[None, :] * self.gradr
+        g = 2.0 * CORRECTION * eta * voli * volj * self.gradr
         dv = self.v[:, None, :] - self.v[None, :, :]
         return (fp + fel[..., None] * self.n - g[..., None] * dv).sum(axis=1)
 
@@ -275,7 +301,7 @@ SNAP = f"include {PARAMS}\n" + CHANNEL.replace(
 assert "snap.dump" in SNAP
 
 
-@pytest.mark.parametrize("case", ["paper", "K0", "contact-walls"])
+@pytest.mark.parametrize("case", ["paper", "K0", "contact-walls", "fill"])
 def test_law_matches_equations(pack, tmp_path, case):
     """Five steps into a channel state (salt radii x 1.02, so salt discs
     overlap, and an arbitrary velocity field): the reference density is the
@@ -291,7 +317,10 @@ def test_law_matches_equations(pack, tmp_path, case):
     volume m / rho0 of the salt."""
     K = 0.0 if case == "K0" else PAPER["K_salt"]
     deck = SNAP
-    if case == "contact-walls":
+    if case == "fill":    # contact walls, whose salt partners count with their fill (max 8)
+        deck = deck.replace("pair_style saltdem/viscous\"", "pair_style saltdem/viscous fill 8\"")
+        assert "fill 8" in deck
+    if case in ("contact-walls", "fill"):
         deck = deck.replace("neigh_modify    exclude type 3 3",
                             "pair_coeff 3 3 ${eta} ${knw} contact 0\n"
                             "neigh_modify    exclude type 3 3")
@@ -300,7 +329,7 @@ def test_law_matches_equations(pack, tmp_path, case):
     r = run_lmp(deck, tmp_path, pack=pack, V=0, nrun=5, nsteps=100, shrink=1.02, K=K)
     check_ok(r)
     s = Snapshot(tmp_path / "snap.dump", PACK["W"])
-    rho0 = {2: s.rho[s.salt].mean(), 3: s.rho[s.type == 3].mean()}
+    rho0 = {2: s.rho0(2), 3: s.rho0(3)}
     if K > 0:
         assert rho0_in(r.out, 2) == pytest.approx(rho0[2], rel=1e-3)    # taken 5 steps earlier
     if case == "paper":
@@ -311,7 +340,8 @@ def test_law_matches_equations(pack, tmp_path, case):
     # the law uses the reference densities it printed (taken 5 steps earlier)
     rho0 = {t: rho0_in(r.out, t) if f"fluid type {t} =" in r.out else v for t, v in rho0.items()}
     F = s.forces(ETA, K, PAPER["kn_salt"], PAPER["kn_wall"], rho0,
-                 wall_fluid=(case != "contact-walls"))
+                 wall_fluid=case not in ("contact-walls", "fill"),
+                 fill_max=8.0 if case == "fill" else 1.0)
     err = np.abs(F[s.salt] - s.f[s.salt]).max() / np.abs(s.f[s.salt]).max()
     assert err < 1e-9, f"forces differ from the equations by {err:.3g} of the largest"
 

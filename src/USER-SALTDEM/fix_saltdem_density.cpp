@@ -125,30 +125,42 @@ void FixSaltdemDensity::measure()
   restored = 0;
 
   if (need) {
-    // the mean kernel density sum_j m_j W_ij per type (drho as the work array), and the
-    // continuity densities that atoms already carry (an earlier run, a restart file)
-    pair->kernel_density(drho);
-    if (force->newton_pair) comm->reverse_comm(this);
-    std::vector<double> sum(4 * (nt + 1), 0.0), all(4 * (nt + 1));
+    // the mean kernel density sum_j m_j W_ij per type over the particles whose kernel is full
+    // (over all of them where none is: a layer thinner than the kernel), drho as the work
+    // array, and the continuity densities that atoms already carry (an earlier run, a restart
+    // file)
+    std::vector<double> interior(nlocal > 0 ? nlocal : 1);
+    pair->kernel_density(drho, interior.data());
+    std::vector<double> sum(6 * (nt + 1), 0.0), all(6 * (nt + 1));
     for (int i = 0; i < nlocal; i++) {
-      sum[4 * type[i]] += drho[i];
-      sum[4 * type[i] + 1] += 1.0;
+      double *st = &sum[6 * type[i]];
+      st[0] += drho[i];
+      st[1] += 1.0;
       if (rho[i] > 0.0) {
-        sum[4 * type[i] + 2] += rho[i];
-        sum[4 * type[i] + 3] += 1.0;
+        st[2] += rho[i];
+        st[3] += 1.0;
+      }
+      if (interior[i] > 0.0) {
+        st[4] += drho[i];
+        st[5] += 1.0;
       }
     }
-    MPI_Allreduce(sum.data(), all.data(), 4 * (nt + 1), MPI_DOUBLE, MPI_SUM, world);
+    MPI_Allreduce(sum.data(), all.data(), 6 * (nt + 1), MPI_DOUBLE, MPI_SUM, world);
     for (int t = 1; t <= nt; t++)
-      if (stale(t) && all[4 * t + 1] > 0.0) {
+      if (stale(t) && all[6 * t + 1] > 0.0) {
+        const double *at = &all[6 * t];
         const double hold = h0[t];
-        rho0[t] = all[4 * t] / all[4 * t + 1];
+        rho0[t] = (at[5] > 0.0) ? at[4] / at[5] : at[0] / at[1];
         h0[t] = pair->fluid_h(t);
         if (comm->me == 0)
-          utils::logmesg(lmp, "pair {}: reference density of fluid type {} = {:.15g}\n",
-                         pair->name_of(), t, rho0[t]);
-        if (all[4 * t + 3] > 0.0 && comm->me == 0) {
-          const double carried = all[4 * t + 2] / all[4 * t + 3];
+          utils::logmesg(lmp,
+                         "pair {}: reference density of fluid type {} = {:.15g}\n  the mean "
+                         "kernel density of {:.0f} of its {:.0f} particles, those with a full "
+                         "kernel (of all: {:.15g})\n",
+                         pair->name_of(), t, rho0[t], at[5] > 0.0 ? at[5] : at[1], at[1],
+                         at[0] / at[1]);
+        if (at[3] > 0.0 && comm->me == 0) {
+          const double carried = at[2] / at[3];
           error->warning(FLERR,
                          "Pair style {}: the reference density of fluid type {} was measured "
                          "again ({:.6g}; its kernel h is now {:.6g}, was {:.6g}) while its "

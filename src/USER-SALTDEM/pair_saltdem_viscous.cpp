@@ -47,13 +47,13 @@ using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
-    pmat(nullptr), moment(nullptr), scratch(nullptr), fix_density(nullptr), fluidself(nullptr),
-    isfluid(nullptr), nmax(0), any_fluid(false), calibration(DEFAULT_CALIBRATION),
-    correction(DEFAULT_CORRECTION), viscfactor(0.8), calibration_checked(DEFAULT_CALIBRATION),
-    salt_inertia(1.0)
+    pmat(nullptr), moment(nullptr), fill(nullptr), scratch(nullptr), fix_density(nullptr),
+    fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
+    calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.8),
+    fill_max(DEFAULT_FILL_MAX), calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
-  comm_forward = 1 + SaltDEM::NSYM;    // volume and pressure matrix
-  comm_reverse = SaltDEM::NSYM;        // the kernel moments of ghosts (newton on)
+  comm_forward = 2 + SaltDEM::NSYM;    // volume, boundary fill and pressure matrix
+  comm_reverse = NMOM;                 // the kernel sums of ghosts (newton on)
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -64,6 +64,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(vol);
   memory->destroy(pmat);
   memory->destroy(moment);
+  memory->destroy(fill);
   memory->destroy(scratch);
   memory->destroy(isfluid);
   memory->destroy(fluidself);
@@ -118,7 +119,8 @@ double PairSaltdemViscous::fluid_K(int t) const
   return params[t][t].K;
 }
 
-/* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C] */
+/* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C]
+   [fill F] */
 
 void PairSaltdemViscous::settings(int narg, char **arg)
 {
@@ -142,10 +144,17 @@ void PairSaltdemViscous::settings(int narg, char **arg)
       if (v <= 0.0 || v > 1.0)
         error->all(FLERR, "Pair style {}: viscfactor {} must be in (0, 1]", name, v);
       viscfactor = v;
+    } else if (strcmp(arg[iarg], "fill") == 0) {
+      if (v < 1.0 || v > 100.0)
+        error->all(FLERR,
+                   "Pair style {}: fill {} must be in [1, 100] (the most a boundary particle "
+                   "stands for, in its own volumes; 1: none)",
+                   name, v);
+      fill_max = v;
     } else
       error->all(FLERR,
                  "Pair style {}: unknown keyword '{}' (expected: correction, calibration, "
-                 "dtfactor, viscfactor)",
+                 "dtfactor, viscfactor, fill)",
                  name, arg[iarg]);
     iarg += 2;
   }
@@ -270,19 +279,22 @@ void PairSaltdemViscous::init_style()
 }
 
 /* the kernel density out[i] = sum_j m_j W_ij (j = i included) of every owned atom of a type
-   whose own pair is FLUID, over the FLUID pairs of the list, owned and ghost atoms (with
-   newton on the caller sums the ghosts' parts onto their owners): for the reference density
-   (FixSaltdemDensity) */
+   whose own pair is FLUID, over the FLUID pairs of the list, owned and ghost atoms, and
+   whether its kernel is full (interior[i] = 1: its neighbours surround it, see
+   SaltDEM::INTERIOR_MAX; 0 otherwise): for the reference density (FixSaltdemDensity).  The
+   sums use the moment array (the density in the slot MOM_WF, the first moment in the slots
+   of S, its norm in MOM_WB: slots the reverse communication sends) */
 
-void PairSaltdemViscous::kernel_density(double *out)
+void PairSaltdemViscous::kernel_density(double *out, double *interior)
 {
+  grow_arrays();
   if (domain->dimension == 2)
-    kernel_density<2>(out);
+    kernel_density<2>(out, interior);
   else
-    kernel_density<3>(out);
+    kernel_density<3>(out, interior);
 }
 
-template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
+template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *interior)
 {
   const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
   const double *m = atom->rmass;
@@ -290,10 +302,11 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
-  for (int i = 0; i < nall; i++) {
+  for (int i = 0; i < NMOM * nall; i++) moment[i] = 0.0;
+  for (int i = 0; i < nlocal; i++) {
     const int t = type[i];
-    out[i] = (i < nlocal && fluidself[t]) ? m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0)
-                                          : 0.0;
+    if (fluidself[t])
+      moment[NMOM * i + MOM_WF] = m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0);
   }
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -303,12 +316,37 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
       const int j = jlist[jj] & NEIGHMASK;
       const SaltDEM::ViscousParams &p = prow[type[j]];
       if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
-      double rsq = 0.0;
-      for (int k = 0; k < DIM; k++) rsq += (x[i][k] - x[j][k]) * (x[i][k] - x[j][k]);
-      const double w = SaltDEM::wendland_c2(DIM, p.h, sqrt(rsq));
-      out[i] += m[j] * w;
-      if (newton_pair || j < nlocal) out[j] += m[i] * w;
+      double d[3] = {0.0, 0.0, 0.0}, rsq = 0.0;
+      for (int k = 0; k < DIM; k++) {
+        d[k] = x[i][k] - x[j][k];
+        rsq += d[k] * d[k];
+      }
+      const double r = sqrt(rsq);
+      const double w = SaltDEM::wendland_c2(DIM, p.h, r);
+      const double s = (r < 2.0 * p.h) ? 1.0 - 0.5 * r / p.h : 0.0;
+      const double g = s * s * s;    // |W'|/r up to a constant
+      double *Mi = &moment[NMOM * i];
+      Mi[MOM_WF] += m[j] * w;
+      Mi[MOM_WB] += m[j] * g * r;
+      for (int k = 0; k < DIM; k++) Mi[k] += m[j] * g * d[k];
+      if (newton_pair || j < nlocal) {
+        double *Mj = &moment[NMOM * j];
+        Mj[MOM_WF] += m[i] * w;
+        Mj[MOM_WB] += m[i] * g * r;
+        for (int k = 0; k < DIM; k++) Mj[k] -= m[i] * g * d[k];
+      }
     }
+  }
+  if (newton_pair) comm->reverse_comm(this);
+  for (int i = 0; i < nlocal; i++) {
+    const double *Mi = &moment[NMOM * i];
+    const int t = type[i];
+    out[i] = fluidself[t] ? Mi[MOM_WF] : 0.0;
+    double g2 = 0.0;
+    for (int k = 0; k < DIM; k++) g2 += Mi[k] * Mi[k];
+    interior[i] =
+        (fluidself[t] && Mi[MOM_WB] > 0.0 && sqrt(g2) < SaltDEM::INTERIOR_MAX * Mi[MOM_WB]) ? 1.0
+                                                                                            : 0.0;
   }
 }
 
@@ -320,12 +358,15 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out)
    summed in the force pass into the fix's d rho / dt and integrated by the fix after it, as
    LAMMPS's SPH styles do: the pressure of a step is that of the density at the end of the
    step before.  It starts at the reference rho0 of its type, the mean kernel density
-   sum_j m_j W_ij of that type at the setup of the first run (the fix measures it), so the
-   fluid starts free of pressure.  A summed kernel density would instead drift upwards as
-   particles pair up (the mean of sum_j W grows while the volume does not).  Here, before the
-   force pass: the volume m / rho and the pressure matrix A = m P / rho^2 L with the equation
-   of state and the kernel-gradient correction L of the present positions
-   (SaltDEM::particle_volume, pressure_term, pressure_matrix), sent to the ghosts. */
+   sum_j m_j W_ij of the particles of that type whose kernel is full (away from free surfaces
+   and boundaries) at the setup of the first run (the fix measures it), so the fluid starts
+   free of pressure.  A summed kernel density would instead drift upwards as particles pair up
+   (the mean of sum_j W grows while the volume does not).  Here, before the force pass: the
+   kernel sums of the present positions (kernel_moments), each fluid particle's boundary fill
+   (SaltDEM::boundary_fill), its volume m / rho and its pressure matrix A = m P / rho^2 L with
+   the equation of state and the kernel-gradient correction L, whose moment counts the
+   boundary partners with the fill (SaltDEM::particle_volume, pressure_term, pressure_matrix),
+   sent to the ghosts. */
 
 void PairSaltdemViscous::pre_loop()
 {
@@ -340,15 +381,10 @@ void PairSaltdemViscous::pre_loop()
   const int dim = domain->dimension;
   constexpr int NS = SaltDEM::NSYM;
 
-  bool any_pressure = false;
-  for (int t = 1; t <= nt; t++)
-    if (isfluid[t]) any_pressure = true;
-  if (any_pressure) {
-    if (dim == 2)
-      kernel_moments<2>();
-    else
-      kernel_moments<3>();
-  }
+  if (dim == 2)
+    kernel_moments<2>();
+  else
+    kernel_moments<3>();
 
   // a boundary particle (wall, cover) gets the volume it would have at the fluid's reference
   // density; a fluid particle created during the run starts at its reference density
@@ -359,23 +395,26 @@ void PairSaltdemViscous::pre_loop()
     const int t = type[i];
     const double r = fluidself[t] ? (rho[i] > 0.0 ? rho[i] : rho0[t]) : rhob;
     vol[i] = SaltDEM::particle_volume(m[i], r);
+    double *M = &moment[NMOM * i];
+    fill[i] = fluidself[t] ? SaltDEM::boundary_fill(M[MOM_WF], M[MOM_WB], r, rhob, fill_max) : 1.0;
     double *A = &pmat[NS * i];
     if (isfluid[t]) {
       const double a = SaltDEM::pressure_term(m[i], params[t][t].K, r, rho0[t]);
-      double *S = &moment[NS * i];
+      for (int k = 0; k < NS; k++) A[k] = M[k] + fill[i] * M[NS + k];
       if (dim == 2)
-        SaltDEM::pressure_matrix<2>(a, r, S);
+        SaltDEM::pressure_matrix<2>(a, r, A);
       else
-        SaltDEM::pressure_matrix<3>(a, r, S);
-      for (int k = 0; k < NS; k++) A[k] = S[k];
+        SaltDEM::pressure_matrix<3>(a, r, A);
     } else
       for (int k = 0; k < NS; k++) A[k] = 0.0;
   }
   comm->forward_comm(this);
 }
 
-/* the kernel moments S_i = sum_j m_j w_ij d_ij d_ij of the owned particles that carry a
-   pressure, over the FLUID pairs of the list (with newton on the ghosts' parts go home) */
+/* the kernel sums of the owned particles of the types whose own pair is FLUID, over the FLUID
+   pairs of the list, split into their fluid and their boundary partners (a partner whose own
+   pair is not FLUID): the moments S = sum_j m_j w_ij d_ij d_ij and the kernel sums
+   sum_j m_j W_ij (i itself among the fluid's); with newton on the ghosts' parts go home */
 
 template <int DIM> void PairSaltdemViscous::kernel_moments()
 {
@@ -386,31 +425,42 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
-  for (int i = 0; i < NS * (newton_pair ? nall : nlocal); i++) moment[i] = 0.0;
+  for (int i = 0; i < NMOM * (newton_pair ? nall : nlocal); i++) moment[i] = 0.0;
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
     const int itype = type[i];
-    const bool fi = isfluid[itype];
+    const bool fi = fluidself[itype];
     const double xi0 = x[i][0], xi1 = x[i][1], xi2 = (DIM == 3) ? x[i][2] : 0.0;
     const int *jlist = list->firstneigh[i];
     const SaltDEM::ViscousParams *prow = params[itype];
-    double Si[NS] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};    // i's sum, stored once
+    double Mi[NMOM] = {};    // i's sums, stored once
+    if (fi) Mi[MOM_WF] = m[i] * SaltDEM::wendland_c2(DIM, prow[itype].h, 0.0);
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const int jtype = type[j];
       const SaltDEM::ViscousParams &p = prow[jtype];
-      const bool fj = isfluid[jtype];
+      const bool fj = fluidself[jtype];
       if (p.mode != SaltDEM::VISCOUS_FLUID || !(fi || fj)) continue;
       const double d[3] = {xi0 - x[j][0], xi1 - x[j][1], (DIM == 3) ? xi2 - x[j][2] : 0.0};
       const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
       if (rsq * p.ih2 * p.ih2 >= 1.0 || rsq == 0.0) continue;    // beyond 2h (the list has a skin)
-      const double s = 1.0 - sqrt(rsq) * p.ih2;
+      const double r = sqrt(rsq);
+      const double s = 1.0 - r * p.ih2;
       const double w = p.cw * s * s * s;
-      if (fi) SaltDEM::add_moment<DIM>(m[j] * w, d, Si);
-      if (fj && (newton_pair || j < nlocal)) SaltDEM::add_moment<DIM>(m[i] * w, d, &moment[NS * j]);
+      const double W = SaltDEM::wendland_c2(DIM, p.h, r);
+      // i's partner j goes into i's fluid or boundary sums, and i into j's
+      if (fi) {
+        SaltDEM::add_moment<DIM>(m[j] * w, d, fj ? Mi : Mi + NS);
+        Mi[fj ? MOM_WF : MOM_WB] += m[j] * W;
+      }
+      if (fj && (newton_pair || j < nlocal)) {
+        double *Mj = &moment[NMOM * j];
+        SaltDEM::add_moment<DIM>(m[i] * w, d, fi ? Mj : Mj + NS);
+        Mj[fi ? MOM_WF : MOM_WB] += m[i] * W;
+      }
     }
     if (fi)
-      for (int k = 0; k < NS; k++) moment[NS * i + k] += Si[k];
+      for (int k = 0; k < NMOM; k++) moment[NMOM * i + k] += Mi[k];
   }
   if (newton_pair) comm->reverse_comm(this);
 }
@@ -421,11 +471,13 @@ void PairSaltdemViscous::grow_arrays()
   memory->destroy(vol);
   memory->destroy(pmat);
   memory->destroy(moment);
+  memory->destroy(fill);
   memory->destroy(scratch);
   nmax = atom->nmax;
   memory->create(vol, nmax, "pair:vol");
+  memory->create(fill, nmax, "pair:fill");
   memory->create(pmat, SaltDEM::NSYM * nmax, "pair:pmat");
-  memory->create(moment, SaltDEM::NSYM * nmax, "pair:moment");
+  memory->create(moment, NMOM * nmax, "pair:moment");
   if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
 }
 
@@ -449,6 +501,7 @@ int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, in
   for (int i = 0; i < n; i++) {
     const int j = list[i];
     buf[k++] = vol[j];
+    buf[k++] = fill[j];
     for (int c = 0; c < ns; c++) buf[k++] = pmat[SaltDEM::NSYM * j + c];
   }
   return k;
@@ -460,31 +513,48 @@ void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
   int k = 0;
   for (int i = first; i < first + n; i++) {
     vol[i] = buf[k++];
+    fill[i] = buf[k++];
     for (int c = 0; c < ns; c++) pmat[SaltDEM::NSYM * i + c] = buf[k++];
   }
 }
 
-int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
+/* the slots of an atom's kernel sums in use in this dimension: the two moments' components
+   and the two kernel sums */
+
+int PairSaltdemViscous::moment_slots(int *slot) const
 {
   const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
   int k = 0;
+  for (int c = 0; c < ns; c++) slot[k++] = c;
+  for (int c = 0; c < ns; c++) slot[k++] = SaltDEM::NSYM + c;
+  slot[k++] = MOM_WF;
+  slot[k++] = MOM_WB;
+  return k;
+}
+
+int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
+{
+  int slot[NMOM];
+  const int ns = moment_slots(slot);
+  int k = 0;
   for (int i = first; i < first + n; i++)
-    for (int c = 0; c < ns; c++) buf[k++] = moment[SaltDEM::NSYM * i + c];
+    for (int c = 0; c < ns; c++) buf[k++] = moment[NMOM * i + slot[c]];
   return k;
 }
 
 void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
+  int slot[NMOM];
+  const int ns = moment_slots(slot);
   int k = 0;
   for (int i = 0; i < n; i++)
-    for (int c = 0; c < ns; c++) moment[SaltDEM::NSYM * list[i] + c] += buf[k++];
+    for (int c = 0; c < ns; c++) moment[NMOM * list[i] + slot[c]] += buf[k++];
 }
 
 double PairSaltdemViscous::memory_usage()
 {
   return PairSaltdem::memory_usage() +
-      (1.0 + 2.0 * SaltDEM::NSYM + (scratch ? 1.0 : 0.0)) * nmax * sizeof(double);
+      (2.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0)) * nmax * sizeof(double);
 }
 
 /* the dashpots from the viscosity, which may have been changed through extract("eta") since
@@ -616,7 +686,7 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
 
 std::vector<std::string> PairSaltdemViscous::setting_names() const
 {
-  return {"calibration", "correction", "dtfactor", "viscfactor"};
+  return {"calibration", "correction", "dtfactor", "viscfactor", "fill"};
 }
 
 void PairSaltdemViscous::pack_settings(double *v) const
@@ -625,6 +695,7 @@ void PairSaltdemViscous::pack_settings(double *v) const
   v[1] = correction;
   v[2] = dtfactor;
   v[3] = viscfactor;
+  v[4] = fill_max;
 }
 
 void PairSaltdemViscous::unpack_settings(const double *v)
@@ -633,6 +704,7 @@ void PairSaltdemViscous::unpack_settings(const double *v)
   correction = v[1];
   dtfactor = v[2];
   viscfactor = v[3];
+  fill_max = v[4];
 }
 
 std::vector<std::string> PairSaltdemViscous::coeff_names() const

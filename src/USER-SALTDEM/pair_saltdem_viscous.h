@@ -58,7 +58,7 @@ class PairSaltdemViscous : public PairSaltdem {
   const int *fluid_types() const { return fluidself; }
   double fluid_h(int t) const;
   double fluid_K(int t) const;
-  void kernel_density(double *out);
+  void kernel_density(double *out, double *interior);
 
   // the force law, inlined into the shared pair loop (PairSaltdem::loop; defined in
   // saltdem_pair_loop.h): FLUID pairs need only positions and velocities of the centres and
@@ -78,11 +78,16 @@ class PairSaltdemViscous : public PairSaltdem {
 
  protected:
   SaltDEM::ViscousParams **params;
-  double **eta;       // requested viscosity per type pair (extract "eta": fix adapt, fixes)
-  double *vol;        // FLUID: particle volume m / rho, owned and ghost atoms
-  double *pmat;       // FLUID: pressure matrix A = m P / rho^2 L per atom (NSYM values, see
-                      // SaltDEM::pressure_matrix), owned and ghost atoms
-  double *moment;     // FLUID: its kernel moment S = sum_j m_j w d d (NSYM values per atom)
+  double **eta;      // requested viscosity per type pair (extract "eta": fix adapt, fixes)
+  double *vol;       // FLUID: particle volume m / rho, owned and ghost atoms
+  double *pmat;      // FLUID: pressure matrix A = m P / rho^2 L per atom (NSYM values, see
+                     // SaltDEM::pressure_matrix), owned and ghost atoms
+  double *moment;    // FLUID: its kernel sums, NMOM values per atom: the moments
+                     // S = sum_j m_j w d d over its fluid and over its boundary partners
+                     // (NSYM each), the kernel sums sum_j m_j W over both (see pre_loop)
+  double *fill;      // FLUID: the boundary fill of each fluid particle (SaltDEM::boundary_fill)
+  static constexpr int NMOM = 2 * 6 + 2;
+  static constexpr int MOM_WF = 12, MOM_WB = 13;    // the kernel sums' slots
   double *scratch;    // no FLUID pair: what the force pass sums the (zero) q into
   class FixSaltdemDensity *fix_density;    // FLUID: the density (state) and d rho / dt
   std::string density_id;                  // its ID
@@ -93,7 +98,10 @@ class PairSaltdemViscous : public PairSaltdem {
   double calibration;
   double correction;    // FLUID: Morris viscosity multiplied by this (measured, see above)
   double viscfactor;    // safety factor on the viscous stable dt
-  template <int DIM> void kernel_density(double *out);
+  double fill_max;      // FLUID: the largest boundary fill (1: boundaries count as themselves)
+  static constexpr double DEFAULT_FILL_MAX = 1.0;    // (off: see the pair's doc page)
+  template <int DIM> void kernel_density(double *out, double *interior);
+  int moment_slots(int *slot) const;    // the slots of moment that the reverse comm sends
   template <int DIM> void kernel_moments();
   void grow_arrays();    // vol, pmat, moment (and scratch) for the owned and ghost atoms
   void allocate_params(int) override;
@@ -104,7 +112,7 @@ class PairSaltdemViscous : public PairSaltdem {
   double range(int i, int j) const override;
   double range_abs(int i, int j) const override;
   void pair_limit(int, int, double, double, bool, double &, std::string &) override;
-  int restart_version() const override { return 1; }
+  int restart_version() const override { return 2; }    // 2: the setting fill
   std::vector<std::string> setting_names() const override;
   void pack_settings(double *) const override;
   void unpack_settings(const double *) override;

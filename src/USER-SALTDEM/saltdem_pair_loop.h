@@ -221,7 +221,10 @@ int PairSaltdemCohesive::law(const Atoms &a, int i, int j, int itype, int jtype,
 }
 
 /* the salt laws: FLUID pairs need only positions and velocities of the centres and make no
-   torque; q is the pair's term v_ij . grad_i W_ij of the continuity equation */
+   torque; q is the pair's term v_ij . grad_i W_ij of the continuity equation.  A boundary
+   partner (its own pair is not FLUID) of a fluid particle counts with that particle's fill:
+   its mass and volume times fill in the viscosity, the mirrored pressure and the continuity
+   sum (SaltDEM::boundary_fill) */
 
 template <int DIM, int EVFLAG>
 int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *,
@@ -233,15 +236,25 @@ int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, 
                          (DIM == 3) ? a.x[i][2] - a.x[j][2] : 0.0};
     const double vr[3] = {a.v[i][0] - a.v[j][0], a.v[i][1] - a.v[j][1],
                           (DIM == 3) ? a.v[i][2] - a.v[j][2] : 0.0};
+    double mi = a.rmass[i], mj = a.rmass[j], vi = vol[i], vj = vol[j], c = 1.0;
+    if (!fluidself[jtype]) {
+      c = fill[i];
+      mj *= c;
+      vj *= c;
+    } else if (!fluidself[itype]) {
+      c = fill[j];
+      mi *= c;
+      vi *= c;
+    }
     // SPH pressure m_j A_i + m_i A_j with the corrected pressure matrices A (pre_loop); a
     // particle that is not fluid (wall, cover) mirrors the fluid's
     double pm[SaltDEM::NSYM];
-    SaltDEM::pressure_pair<DIM>(isfluid[itype], isfluid[jtype], a.rmass[i], a.rmass[j],
-                                &pmat[SaltDEM::NSYM * i], &pmat[SaltDEM::NSYM * j], pm);
-    return SaltDEM::viscous_fluid_force<DIM, EVFLAG>(p, d, vr, r, a.radius[i] + a.radius[j], vol[i],
-                                                     vol[j], pm, f, evdwl, q)
-        ? LAW_TOUCH
-        : 0;
+    SaltDEM::pressure_pair<DIM>(isfluid[itype], isfluid[jtype], mi, mj, &pmat[SaltDEM::NSYM * i],
+                                &pmat[SaltDEM::NSYM * j], pm);
+    const bool touch = SaltDEM::viscous_fluid_force<DIM, EVFLAG>(
+        p, d, vr, r, a.radius[i] + a.radius[j], vi, vj, pm, f, evdwl, q);
+    q *= c;    // (the loop multiplies by the partner's own mass)
+    return touch ? LAW_TOUCH : 0;
   }
   SaltDEM::Contact c;
   SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],

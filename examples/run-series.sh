@@ -14,6 +14,11 @@
 #   eta100   Expts 1-3 with salt 100x more viscous than the paper states (5e10 Pa s, S x100 to
 #            keep the Reynolds number): the Newtonian salt as strong as the paper's kind of salt
 #            is under the scenes' overburden (docs/scenes.md)
+#   syntectonic  Expt 1 with sedimentation that keeps filling the hanging-wall low (every 50 m
+#            of slip, fill to the initial top of the section: examples/scene/sediment.in)
+#            beside the plain Expt 1 (issue 18; docs/gallery.md, "Beyond the paper")
+#   wedge    loading by a prograding wedge (examples/wedge.in): the front migrates 3 km at
+#            0.317 m/s (10 km/Myr natural), filling behind it to 400 m above the initial top
 #   gallery  everything docs/gallery.md shows: at quick expts, fig7, eta100, contact, seeds and fig6;
 #            at medium Expt 1, Expt 3 and fig7
 # PRESET: full (default: the paper's resolution), medium, quick, tiny.  Every run goes to the
@@ -26,7 +31,7 @@
 # own ONLY list).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|eta100|gallery [full|medium|quick|tiny] [-- lmp args]}
+series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|eta100|syntectonic|wedge|gallery [full|medium|quick|tiny] [-- lmp args]}
 preset=${2:-full}
 shift $(( $# >= 2 ? 2 : 1 ))
 [ "${1:-}" = "--" ] && shift
@@ -57,6 +62,8 @@ contact=("expt1_contact expt1 0.05 $cs" "expt3_contact expt3 0.05 $cs" "expt2_co
          "fig7_salt250_contact expt1 0.05 -var dip 65 -var salt 250 $cs"
          "expt1_slow_contact expt1 0.01 $cs" "expt3_slow_contact expt3 0.01 $cs"
          "expt2_slow_contact expt2 0.01 $cs")
+syntectonic=("expt1 expt1 0.05" "expt1_sedfill expt1 0.05 -var sediment fill")
+wedge=("wedge wedge 0.317")
 eta100=("expt1_eta100x expt1 0.05 -var eta 5e10 -var S 400" "expt3_eta100x expt3 0.05 -var eta 5e10 -var S 400"
         "expt2_eta100x expt2 0.05 -var eta 5e10 -var S 400")
 runs=()
@@ -68,10 +75,12 @@ case $series in
   study) runs=("${study[@]}") ;;
   contact) runs=("${contact[@]}") ;;
   eta100) runs=("${eta100[@]}") ;;
+  syntectonic) runs=("${syntectonic[@]}") ;;
+  wedge) runs=("${wedge[@]}") ;;
   gallery)
     if [ "$preset" = medium ]; then runs=("expt1 expt1 0.05" "expt3 expt3 0.05" "${fig7[@]}")
     else runs=("${expts[@]}" "${fig7[@]}" "${eta100[@]}" "${contact[@]}" "${seeds[@]}" "${fig6[@]}"); fi ;;
-  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, eta100 or gallery" >&2; exit 2 ;;
+  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, eta100, syntectonic, wedge or gallery" >&2; exit 2 ;;
 esac
 
 for r in "${runs[@]}"; do
@@ -95,6 +104,9 @@ for r in "${runs[@]}"; do
   faults=(--fault-x 3125); [ "$deck" = expt2 ] && faults=(--fault-x 5000 7500)
   [ "$deck" = expt3 ] && faults=()
   scene=fault; [ "$deck" = expt2 ] && scene=keystone; [ "$deck" = expt3 ] && scene=tilted
+  # the wedge: no basement fault (measured as a scene without one), its stages are the front's
+  # migration, the incremental strain over 250 m of it
+  [ "$deck" = wedge ] && { faults=(--increment 250 --at 500 1000 1500 2000 3000); scene=tilted; }
   "$py" "$root/python/saltdem-post" figure "$out/dump.$deck.*.txt" -o "$out/figures" \
       --name "$name.png" --title "$name ($preset, $rate m/s)" --rate "$rate" "${faults[@]}" -q
   "$py" "$root/python/saltdem-post" outcomes "$out/dump.$deck.*.txt" -o "$out/outcomes" \

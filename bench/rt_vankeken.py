@@ -21,7 +21,10 @@ the rate, the initial amplitude, and the vrms peak and its time (if the run reac
 moved to the benchmark's initial amplitude 0.02.
     /usr/bin/python3 bench/rt_vankeken.py --poiseuille DUMP ETA GX H RHO_PHI
 fits the no-slip planes and the viscosity to the dump of a Poiseuille run of the same box
-(-var gravity poiseuille -var rho_light 2400 -var dump 1).
+(-var gravity poiseuille -var rho_light 2400 -var dump 1), and
+    /usr/bin/python3 bench/rt_vankeken.py --hydrostatic DUMP LOG K DY
+prints the pressure by row of a flat interface under the full weight (-var amp 0 -var gravity
+full -var wall half -var dump 1).
 """
 import argparse
 import math
@@ -164,16 +167,42 @@ def poiseuille(dump, height):
     u = A (y - y0)(y1 - y) to the fluid's velocities; returns y0, y1 - height and A (the
     viscosity is rho_phi gx / (2 A))"""
     from scipy.optimize import curve_fit
-    with open(dump) as f:
-        lines = f.read().splitlines()
-    i = lines.index(next(l for l in lines if l.startswith("ITEM: ATOMS")))
-    cols = lines[i].split()[2:]
-    a = np.array([[float(w) for w in l.split()] for l in lines[i + 1:]])
-    fluid = a[a[:, cols.index("type")] < 3]
-    y, u = fluid[:, cols.index("y")], fluid[:, cols.index("vx")]
+    d = read_dump(dump)
+    fluid = d["type"] < 3
+    y, u = d["y"][fluid], d["vx"][fluid]
     p, _ = curve_fit(lambda yy, amp, y0, y1: amp * (yy - y0) * (y1 - yy), y, u,
                      p0=(u.max() * 4 / height ** 2, 0.0, height))
     return p[1], p[2] - height, p[0]
+
+
+def read_dump(dump):
+    """columns of a write_dump of the deck (id type x y vx vy density) as a dict"""
+    with open(dump) as f:
+        lines = f.read().splitlines()
+    i = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
+    cols = lines[i].split()[2:]
+    a = np.array([[float(w) for w in l.split()] for l in lines[i + 1:]])
+    return {c: a[:, k] for k, c in enumerate(cols)}
+
+
+def hydrostatic(dump, log, bulk_modulus, dy):
+    """the pressure K (rho/rho0 - 1) of a flat-interface run (-var amp 0 -var gravity full -var
+    wall half -var dump 1) by row: row centre, type, mean pressure; rho0 per type from the log"""
+    import re
+    rho0 = {}
+    with open(log) as f:
+        for line in f:
+            m = re.match(r"pair saltdem/viscous: reference density of fluid type (\d+) = (\S+)",
+                         line)
+            if m:
+                rho0[int(m.group(1))] = float(m.group(2))
+    d = read_dump(dump)
+    fluid = d["type"] < 3
+    typ, y, rho = d["type"][fluid], d["y"][fluid], d["f_SALTDEM_DENSITY"][fluid]
+    p = bulk_modulus * (rho / np.array([rho0[int(t)] for t in typ]) - 1.0)
+    rows = np.floor(y / dy).astype(int)
+    return [(y[rows == r].mean(), typ[rows == r].mean(), p[rows == r].mean())
+            for r in np.unique(rows)]
 
 
 def main(argv=None):
@@ -184,7 +213,21 @@ def main(argv=None):
     ap.add_argument("--poiseuille", nargs=5, metavar=("DUMP", "ETA", "GX", "H", "RHO_PHI"),
                     help="fit the no-slip planes and the viscosity of a Poiseuille run's dump "
                          "(RHO_PHI: the fluid's mass per area, disc density x packing fraction)")
+    ap.add_argument("--hydrostatic", nargs=4, metavar=("DUMP", "LOG", "K", "DY"),
+                    help="pressure by row of a flat-interface run under its full weight")
     args = ap.parse_args(argv)
+    if args.hydrostatic:
+        dump, log, kmod, dy = args.hydrostatic
+        rows = hydrostatic(dump, log, float(kmod), float(dy))
+        print("| y (m) | type | P (Pa) |\n|---|---|---|")
+        for y, t, p in rows:
+            print(f"| {y:.1f} | {t:.2f} | {p:.4g} |")
+        for t in (1, 2):
+            sel = [(y, p) for y, tt, p in rows if tt == t]
+            if len(sel) > 3:     # the gradient inside the layer, one row off each end
+                yy, pp = np.array(sel[1:-1]).T
+                print(f"type {t}: dP/dy = {np.polyfit(yy, pp, 1)[0]:.5g} Pa/m")
+        return 0
     if args.poiseuille:
         dump, eta, gx, height, rho_phi = args.poiseuille
         eta, gx, height, rho_phi = map(float, (eta, gx, height, rho_phi))

@@ -1,5 +1,5 @@
 """The Rayleigh-Taylor benchmark of van Keken et al. (1997), isoviscous case: the analytic linear
-growth rate and the analysis of bench/rt_vankeken.in runs (docs/validation.md, section 4.4).
+growth rate and the analysis of bench/rt_vankeken.in runs (docs/validation.md, section 4.5).
 
 Analytic growth (Stokes flow, equal viscosities, no-slip walls at y = 0 and y = H, interface at
 y = a + zeta cos(k x), k = pi / L).  Lengths in H, time in t_b = eta / (drho g H), velocities in

@@ -1,6 +1,6 @@
 """Buoyancy of the SPH salt: the Rayleigh-Taylor benchmark of van Keken et al. (1997) in reduced
 form (bench/rt_vankeken.in at its coarsest resolution, 20 rows, 20 buoyancy times; the full
-numbers are in docs/validation.md, section 4.4).
+numbers are in docs/validation.md, section 4.5).
 
 Two fluid types of disc density 2160 and 2400 kg/m^3; the light layer's first Fourier mode grows
 at the analytic Stokes rate (0.0109402 per t_b) within the error measured at this resolution

@@ -23,7 +23,7 @@ reference lies within the floor cannot be told from it.
       --seg paper:0.002:20:1 --seg paper-omp2:0.002:20:2 --seg new:0:20:1 --seg new-omp2:0:20:2 \\
       --ref paper --floor paper:paper-omp2 --floor new:new-omp2 [--length 50] [--table T.md]
 
---seg NAME:DT:S:THREADS (DT 0: the restart file's step; S 0: the preset's; a segment already run, with its done.json, is not run again);
+--seg NAME:DT:S:THREADS[:SUBSTEPS[:VAR=VALUE,...]] (SUBSTEPS: the salt's viscous sub-steps, default 1; VAR=VALUE: other deck variables, e.g. kn_cs=2.5e9; DT 0: the restart file's step, or with SUBSTEPS > 1 0.85 of the limit; S 0: the preset's; a segment already run, with its done.json, is not run again);
 --run NAME runs only that segment (to spread segments over cores) and compares nothing.
 """
 import argparse
@@ -71,7 +71,7 @@ def start(preset, restart, work):
     return res
 
 
-def segment(name, dt, S, threads, preset, restart, st, length, work):
+def segment(name, dt, S, threads, substeps, more, preset, restart, st, length, work):
     d = work / name
     done = d / "done.json"
     if done.exists():
@@ -81,6 +81,11 @@ def segment(name, dt, S, threads, preset, restart, st, length, work):
     extra = ["-var", "f", f"{end:.6f}", "-var", "dt", f"{dt:g}"]
     if S > 0:    # else the preset's
         extra += ["-var", "S", f"{S:g}", "-var", "S_cover", f"{S:g}"]
+    if substeps > 1:    # the salt's viscosity in sub-steps (DT 0: the step follows its limit)
+        extra += ["-var", "substeps", str(substeps)]
+    for kv in more:    # other deck variables, NAME=VALUE
+        k, v = kv.split("=")
+        extra += ["-var", k, v]
     if threads > 1:
         extra += ["-sf", "omp", "-pk", "omp", str(threads)]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -94,6 +99,7 @@ def segment(name, dt, S, threads, preset, restart, st, length, work):
     dumps = sorted(d.glob("dump.expt1.*.txt"), key=lambda q: int(q.name.split(".")[2]))
     step_dt = re.findall(r"time step ([0-9.eE+-]+) s, drive", log)
     res = dict(name=name, dt=float(step_dt[-1]) if step_dt else dt, S=S, threads=threads,
+               substeps=substeps, more=list(more),
                steps=int(dumps[-1].name.split(".")[2]) - st["step"],
                cpu_s=(after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
                wall_s=time.time() - t0, first=st["dump"], last=str(dumps[-1]))
@@ -107,7 +113,7 @@ def main(argv=None):
     ap.add_argument("--preset", default="full", help="the preset the restart file was run with")
     ap.add_argument("--work", default=str(ROOT / "out" / "segments"))
     ap.add_argument("--length", type=float, default=50.0, help="fault displacement per segment (m)")
-    ap.add_argument("--seg", action="append", default=[], help="NAME:DT:S:THREADS")
+    ap.add_argument("--seg", action="append", default=[], help="NAME:DT:S:THREADS[:SUBSTEPS[:VAR=VALUE,...]]")
     ap.add_argument("--run", help="run only this segment")
     ap.add_argument("--ref", help="the reference segment")
     ap.add_argument("--floor", action="append", default=[], help="A:B, a pair of the same settings")
@@ -117,8 +123,9 @@ def main(argv=None):
     restart = a.restart.resolve()
     segs = {}
     for s in a.seg:
-        name, dt, S, th = s.split(":")
-        segs[name] = (float(dt), float(S), int(th))
+        name, dt, S, th, *sub = s.split(":")
+        more = tuple(sub[1].split(",")) if len(sub) > 1 and sub[1] else ()
+        segs[name] = (float(dt), float(S), int(th), int(sub[0]) if sub else 1, more)
     st = start(a.preset, restart, work)
     if a.run:
         print(json.dumps(segment(a.run, *segs[a.run], a.preset, restart, st, a.length, work)))

@@ -73,7 +73,22 @@ int FixSaltdemDensity::setmask()
 {
   // setup_pre_force() is called for fixes with PRE_FORCE (runs) or MIN_PRE_FORCE
   // (minimizations) only; pre_force() itself does nothing
-  return PRE_FORCE | MIN_PRE_FORCE | FINAL_INTEGRATE;
+  return PRE_FORCE | MIN_PRE_FORCE | POST_FORCE | FINAL_INTEGRATE;
+}
+
+/* the pair style's viscous sub-steps (pair_style saltdem/viscous substeps N > 1), once every
+   force of the step is in: the sub-steps carry the other forces as constant, so that a steady
+   flow keeps its viscous stress (this fix is created at the first run, after the deck's
+   gravity and other force fixes) */
+
+void FixSaltdemDensity::setup(int)
+{
+  pair->apply_substeps();
+}
+
+void FixSaltdemDensity::post_force(int)
+{
+  pair->apply_substeps();
 }
 
 void FixSaltdemDensity::init()

@@ -51,6 +51,8 @@ class FixSaltdemDensity : public Fix {
   int setmask() override;
   void init() override;
   void setup_pre_force(int) override;
+  void setup(int) override;
+  void post_force(int) override;
   void final_integrate() override;
 
   void grow_arrays(int) override;

@@ -25,6 +25,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix.h"
 #include "fix_neigh_history.h"
 #include "force.h"
 #include "memory.h"
@@ -43,7 +44,7 @@ using namespace LAMMPS_NS;
 PairSaltdem::PairSaltdem(LAMMPS *lmp, const char *style_name, const char *history_id) :
     Pair(lmp), name(style_name), hist_id(history_id), fix_history(nullptr), fix_rebuild(nullptr),
     transfer_factor(nullptr), onerad(nullptr), maxrad(nullptr), extra(nullptr), reach_abs(nullptr),
-    dtfactor(DTFACTOR_DEFAULT), recheck(false)
+    dtfactor(DTFACTOR_DEFAULT), layout_read(0), recheck(false)
 {
   single_enable = 0;
   no_virial_fdotr_compute = 1;
@@ -311,15 +312,21 @@ void PairSaltdem::recheck_timestep()
    integrates, or whose motion is prescribed (fix move, or a fix that
    answers extract("prescribed")), are walls of unbounded mass */
 
+double PairSaltdem::fix_inertia_scale(Fix *ifix)
+{
+  int dim;
+  if (strcmp(ifix->style, "move") == 0 || ifix->extract("prescribed", dim)) return -1.0;
+  auto s = (double *) ifix->extract("inertia", dim);
+  return s ? *s : 1.0;
+}
+
 double PairSaltdem::inertia_scale(int i)
 {
   double scale = -1.0;    // no integrator: a wall
   for (auto &ifix : modify->get_fix_list()) {
     if (!ifix->time_integrate || !(atom->mask[i] & ifix->groupbit)) continue;
-    int dim;
-    if (strcmp(ifix->style, "move") == 0 || ifix->extract("prescribed", dim)) return -1.0;
-    auto s = (double *) ifix->extract("inertia", dim);
-    scale = s ? *s : 1.0;
+    scale = fix_inertia_scale(ifix);
+    if (scale < 0.0) return -1.0;
   }
   return scale;
 }
@@ -458,12 +465,13 @@ void PairSaltdem::read_restart_settings(FILE *fp)
   int version = 0;
   if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
   MPI_Bcast(&version, 1, MPI_INT, 0, world);
-  if (version != restart_version())
+  if (version < oldest_restart_version() || version > restart_version())
     error->all(FLERR,
                "Pair style {}: the restart file holds its coefficients in layout version {}, this "
-               "version of the style reads layout {}. Continue the run with the SaltDEM version "
-               "that wrote it, or start again from a data file (write_data) with this one",
-               name, version, restart_version());
+               "version of the style reads layouts {} to {}. Continue the run with the SaltDEM "
+               "version that wrote it, or start again from a data file (write_data) with this one",
+               name, version, oldest_restart_version(), restart_version());
+  layout_read = version;
   const auto settings = setting_names();
   read_names(fp, settings, "settings");
   std::vector<double> v(settings.size());
@@ -471,6 +479,7 @@ void PairSaltdem::read_restart_settings(FILE *fp)
     utils::sfread(FLERR, v.data(), sizeof(double), v.size(), fp, nullptr, error);
   MPI_Bcast(v.data(), (int) v.size(), MPI_DOUBLE, 0, world);
   unpack_settings(v.data());
+  layout_read = 0;
   const auto coeffs = coeff_names();
   read_names(fp, coeffs, "coefficients");
   ncoeff_read = (int) coeffs.size();

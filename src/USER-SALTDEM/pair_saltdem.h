@@ -35,6 +35,9 @@ namespace LAMMPS_NS {
 
 class PairSaltdem : public Pair {
  public:
+  // the viscous sub-steps per time step of a style that has them (saltdem/timestep ...
+  // substeps N); false: the style has none
+  virtual bool set_substeps(int) { return false; }
   PairSaltdem(class LAMMPS *, const char *style_name, const char *history_id);
   ~PairSaltdem() override;
 
@@ -177,6 +180,9 @@ class PairSaltdem : public Pair {
   // inertial mass per disc (sphere) volume of its integrated atoms
   void min_inertial_mass(double *mmin, double *mvmin);
   double inertia_scale(int i);
+  // the inertia factor a time-integrating fix gives its atoms: S of a SaltDEM integrator, 1
+  // of another, -1 when it prescribes their motion (fix move, extract("prescribed"))
+  static double fix_inertia_scale(class Fix *ifix);
   // Self-describing restart.  A style's settings begin with RESTART_MARK (negative: the files
   // before the mark began with a positive setting; the files of 2026-11-23 and 2026-12-07 with
   // other marks: their raw coefficient structs are not read), then its own layout version
@@ -187,6 +193,10 @@ class PairSaltdem : public Pair {
   // stops read_restart with a message naming both.
   static constexpr double RESTART_MARK = -20261214.0;    // SaltDEM::RESTART_MARK (saltdem_check.h)
   virtual int restart_version() const = 0;
+  // the oldest layout a style still reads (its setting_names() and unpack_settings() then
+  // follow layout_read, the version of the file being read; 0 outside read_restart)
+  virtual int oldest_restart_version() const { return restart_version(); }
+  int layout_read;
   virtual std::vector<std::string> setting_names() const = 0;
   virtual void pack_settings(double *) const = 0;    // in the order of setting_names()
   virtual void unpack_settings(const double *) = 0;

@@ -33,6 +33,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix.h"
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
@@ -45,15 +46,21 @@
 
 using namespace LAMMPS_NS;
 
+// what the pair's forward and reverse communication carries
+enum { COMM_PRESSURE, COMM_SUBSTEP };
+
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
     pmat(nullptr), moment(nullptr), fill(nullptr), scratch(nullptr), fix_density(nullptr),
     fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
     calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.8),
-    fill_max(DEFAULT_FILL_MAX), calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
+    fill_max(DEFAULT_FILL_MAX), substeps(1), usub(nullptr), fsub(nullptr), comm_mode(COMM_PRESSURE),
+    calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
-  comm_forward = 2 + SaltDEM::NSYM;    // volume, boundary fill and pressure matrix
-  comm_reverse = NMOM;                 // the kernel sums of ghosts (newton on)
+  // volume, boundary fill and pressure matrix, or the sub-step velocities; the kernel sums of
+  // ghosts (newton on), or their sub-step forces
+  comm_forward = 2 + SaltDEM::NSYM;
+  comm_reverse = NMOM;
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -66,6 +73,8 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(moment);
   memory->destroy(fill);
   memory->destroy(scratch);
+  memory->destroy(usub);
+  memory->destroy(fsub);
   memory->destroy(isfluid);
   memory->destroy(fluidself);
   // the salt's density is this pair style's state: it goes with it
@@ -84,6 +93,15 @@ void PairSaltdemViscous::allocate_params(int n)
 void PairSaltdemViscous::compute(int eflag, int vflag)
 {
   compute_serial(this, eflag, vflag);
+}
+
+void PairSaltdemViscous::apply_substeps()
+{
+  if (substeps < 2 || !any_fluid) return;
+  if (domain->dimension == 2)
+    viscous_substeps<2>();
+  else
+    viscous_substeps<3>();
 }
 
 void *PairSaltdemViscous::pair_params(int i, int j)
@@ -120,7 +138,7 @@ double PairSaltdemViscous::fluid_K(int t) const
 }
 
 /* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C]
-   [fill F] */
+   [fill F] [substeps N] */
 
 void PairSaltdemViscous::settings(int narg, char **arg)
 {
@@ -128,6 +146,11 @@ void PairSaltdemViscous::settings(int narg, char **arg)
   while (iarg < narg) {
     if (iarg + 2 > narg)
       utils::missing_cmd_args(FLERR, fmt::format("pair_style {} {}", name, arg[iarg]), error);
+    if (strcmp(arg[iarg], "substeps") == 0) {
+      substeps = parse_substeps(arg[iarg + 1]);
+      iarg += 2;
+      continue;
+    }
     const double v = SaltDEM::numeric(FLERR, arg[iarg + 1],
                                       fmt::format("Pair style {}: {}", name, arg[iarg]), lmp);
     if (strcmp(arg[iarg], "correction") == 0) {
@@ -154,10 +177,28 @@ void PairSaltdemViscous::settings(int narg, char **arg)
     } else
       error->all(FLERR,
                  "Pair style {}: unknown keyword '{}' (expected: correction, calibration, "
-                 "dtfactor, viscfactor, fill)",
+                 "dtfactor, viscfactor, fill, substeps)",
                  name, arg[iarg]);
     iarg += 2;
   }
+}
+
+int PairSaltdemViscous::parse_substeps(const char *str)
+{
+  const int n = utils::inumeric(FLERR, str, false, lmp);
+  if (n < 1 || n > MAX_SUBSTEPS)
+    error->all(FLERR,
+               "Pair style {}: substeps {} must be in [1, {}] (1: the viscosity in the force pass)",
+               name, n, MAX_SUBSTEPS);
+  return n;
+}
+
+/* saltdem/timestep F substeps N: the sub-steps of a style read from a restart file too */
+
+bool PairSaltdemViscous::set_substeps(int n)
+{
+  substeps = parse_substeps(std::to_string(n).c_str());
+  return true;
 }
 
 /* pair_coeff I J eta kn fluid h
@@ -275,6 +316,11 @@ void PairSaltdemViscous::init_style()
                  name, density_id, f->style);
     fix_density->pair = this;
   }
+  // the sub-steps move the atoms that a fix integrates, with the inertia it gives them
+  integrators.clear();
+  if (substeps > 1)
+    for (auto &ifix : modify->get_fix_list())
+      if (ifix->time_integrate) integrators.emplace_back(ifix->groupbit, fix_inertia_scale(ifix));
   PairSaltdem::init_style();
 }
 
@@ -337,6 +383,7 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *
       }
     }
   }
+  comm_mode = COMM_PRESSURE;
   if (newton_pair) comm->reverse_comm(this);
   for (int i = 0; i < nlocal; i++) {
     const double *Mi = &moment[NMOM * i];
@@ -408,13 +455,15 @@ void PairSaltdemViscous::pre_loop()
     } else
       for (int k = 0; k < NS; k++) A[k] = 0.0;
   }
+  comm_mode = COMM_PRESSURE;
   comm->forward_comm(this);
 }
 
 /* the kernel sums of the owned particles of the types whose own pair is FLUID, over the FLUID
    pairs of the list, split into their fluid and their boundary partners (a partner whose own
    pair is not FLUID): the moments S = sum_j m_j w_ij d_ij d_ij and the kernel sums
-   sum_j m_j W_ij (i itself among the fluid's); with newton on the ghosts' parts go home */
+   sum_j m_j W_ij (i itself among the fluid's); with newton on the ghosts' parts go home; with
+   viscous sub-steps also the list of the FLUID pairs within 2h and their kernel factors */
 
 template <int DIM> void PairSaltdemViscous::kernel_moments()
 {
@@ -426,6 +475,8 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
   for (int i = 0; i < NMOM * (newton_pair ? nall : nlocal); i++) moment[i] = 0.0;
+  const bool sub = substeps > 1;
+  subpairs.clear();
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
     const int itype = type[i];
@@ -440,12 +491,13 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
       const int jtype = type[j];
       const SaltDEM::ViscousParams &p = prow[jtype];
       const bool fj = fluidself[jtype];
-      if (p.mode != SaltDEM::VISCOUS_FLUID || !(fi || fj)) continue;
+      if (p.mode != SaltDEM::VISCOUS_FLUID || !(fi || fj || sub)) continue;
       const double d[3] = {xi0 - x[j][0], xi1 - x[j][1], (DIM == 3) ? xi2 - x[j][2] : 0.0};
       const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
       if (rsq * p.ih2 * p.ih2 >= 1.0 || rsq == 0.0) continue;    // beyond 2h (the list has a skin)
       const double r = sqrt(rsq);
       const double s = 1.0 - r * p.ih2;
+      if (sub) subpairs.push_back({i, j, p.kvisc * s * s * s});
       const double w = p.cw * s * s * s;
       const double W = SaltDEM::wendland_c2(DIM, p.h, r);
       // i's partner j goes into i's fluid or boundary sums, and i into j's
@@ -462,7 +514,93 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
     if (fi)
       for (int k = 0; k < NMOM; k++) moment[NMOM * i + k] += Mi[k];
   }
-  if (newton_pair) comm->reverse_comm(this);
+  if (newton_pair) {
+    comm_mode = COMM_PRESSURE;
+    comm->reverse_comm(this);
+  }
+}
+
+/* the Morris viscosity of the stored pairs as substeps explicit steps of dt/substeps on copies
+   of the velocities (positions, volumes and coefficients as in the force pass, the other
+   forces of the step held constant), each pair's force -g_ij (u_i - u_j) at every sub-step;
+   the mean force over the sub-steps is added to f, so that the integrator's step gives each
+   particle the velocity change of the sub-steps.  Atoms that no fix integrates or whose motion
+   is prescribed (walls) keep their velocity.  Called by the density fix once all forces of
+   the step are in (post_force). */
+
+template <int DIM> void PairSaltdemViscous::viscous_substeps()
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const double *const *v = atom->v;
+  const double *const *x = atom->x;
+  double **f = atom->f;
+  const int *mask = atom->mask;
+  const double *m = atom->rmass;
+  const int n = substeps;
+  const double hdt = update->dt * force->ftm2v / n;
+  const double inv_n = 1.0 / n;
+
+  for (int i = 0; i < nall; i++)
+    for (int k = 0; k < 3; k++) usub[3 * i + k] = v[i][k];
+  // dt/N over the inertial mass of the owned atoms, 0 for walls
+  // the other forces of the step, held constant over the sub-steps
+  std::vector<double> kick(nlocal), fother(3 * nlocal);
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 3; k++) fother[3 * i + k] = f[i][k];
+  for (int i = 0; i < nlocal; i++) {
+    double scale = -1.0;
+    for (const auto &it : integrators) {
+      if (!(mask[i] & it.first)) continue;
+      scale = it.second;
+      if (scale < 0.0) break;
+    }
+    kick[i] = (scale > 0.0) ? hdt / (scale * m[i]) : 0.0;
+  }
+
+  // the pair weights g_ij = c V_i V_j (the volumes of the force pass; a boundary partner's
+  // volume times the fluid particle's fill, as in the force law), once
+  const int *type = atom->type;
+  for (auto &sp : subpairs) {
+    const double c = !fluidself[type[sp.j]] ? fill[sp.i]
+                                            : (!fluidself[type[sp.i]] ? fill[sp.j] : 1.0);
+    sp.c *= vol[sp.i] * vol[sp.j] * c;
+  }
+  const SubPair *begin = subpairs.data(), *end = begin + subpairs.size();
+  for (int step = 0; step < n; step++) {
+    for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
+    // the pairs come grouped by i (kernel_moments): i's sum is kept in registers
+    for (const SubPair *sp = begin; sp < end;) {
+      const int i = sp->i;
+      const double ui[3] = {usub[3 * i], usub[3 * i + 1], usub[3 * i + 2]};
+      double fi[3] = {0.0, 0.0, 0.0};
+      for (; sp < end && sp->i == i; ++sp) {
+        const int j = sp->j;
+        double fp[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < DIM; k++) {
+          fp[k] = -sp->c * (ui[k] - usub[3 * j + k]);
+          fi[k] += fp[k];
+        }
+        if (newton_pair || j < nlocal)
+          for (int k = 0; k < DIM; k++) fsub[3 * j + k] -= fp[k];
+        if (evflag)
+          ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fp[0] * inv_n, fp[1] * inv_n,
+                       fp[2] * inv_n, x[i][0] - x[j][0], x[i][1] - x[j][1],
+                       (DIM == 3) ? x[i][2] - x[j][2] : 0.0);
+      }
+      for (int k = 0; k < DIM; k++) fsub[3 * i + k] += fi[k];
+    }
+    comm_mode = COMM_SUBSTEP;
+    if (newton_pair) comm->reverse_comm(this);
+    for (int i = 0; i < nlocal; i++)
+      for (int k = 0; k < DIM; k++) {
+        f[i][k] += fsub[3 * i + k] * inv_n;
+        usub[3 * i + k] += kick[i] * (fsub[3 * i + k] + fother[3 * i + k]);
+      }
+    if (step + 1 < n) comm->forward_comm(this);
+  }
+  comm_mode = COMM_PRESSURE;
 }
 
 void PairSaltdemViscous::grow_arrays()
@@ -473,9 +611,15 @@ void PairSaltdemViscous::grow_arrays()
   memory->destroy(moment);
   memory->destroy(fill);
   memory->destroy(scratch);
+  memory->destroy(usub);
+  memory->destroy(fsub);
   nmax = atom->nmax;
   memory->create(vol, nmax, "pair:vol");
   memory->create(fill, nmax, "pair:fill");
+  if (substeps > 1) {
+    memory->create(usub, 3 * nmax, "pair:usub");
+    memory->create(fsub, 3 * nmax, "pair:fsub");
+  }
   memory->create(pmat, SaltDEM::NSYM * nmax, "pair:pmat");
   memory->create(moment, NMOM * nmax, "pair:moment");
   if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
@@ -498,6 +642,11 @@ int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, in
 {
   const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
   int k = 0;
+  if (comm_mode == COMM_SUBSTEP) {
+    for (int i = 0; i < n; i++)
+      for (int c = 0; c < 3; c++) buf[k++] = usub[3 * list[i] + c];
+    return k;
+  }
   for (int i = 0; i < n; i++) {
     const int j = list[i];
     buf[k++] = vol[j];
@@ -511,6 +660,11 @@ void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
 {
   const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
   int k = 0;
+  if (comm_mode == COMM_SUBSTEP) {
+    for (int i = first; i < first + n; i++)
+      for (int c = 0; c < 3; c++) usub[3 * i + c] = buf[k++];
+    return;
+  }
   for (int i = first; i < first + n; i++) {
     vol[i] = buf[k++];
     fill[i] = buf[k++];
@@ -537,6 +691,11 @@ int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
   int slot[NMOM];
   const int ns = moment_slots(slot);
   int k = 0;
+  if (comm_mode == COMM_SUBSTEP) {
+    for (int i = first; i < first + n; i++)
+      for (int c = 0; c < 3; c++) buf[k++] = fsub[3 * i + c];
+    return k;
+  }
   for (int i = first; i < first + n; i++)
     for (int c = 0; c < ns; c++) buf[k++] = moment[NMOM * i + slot[c]];
   return k;
@@ -547,6 +706,11 @@ void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
   int slot[NMOM];
   const int ns = moment_slots(slot);
   int k = 0;
+  if (comm_mode == COMM_SUBSTEP) {
+    for (int i = 0; i < n; i++)
+      for (int c = 0; c < 3; c++) fsub[3 * list[i] + c] += buf[k++];
+    return;
+  }
   for (int i = 0; i < n; i++)
     for (int c = 0; c < ns; c++) moment[NMOM * list[i] + slot[c]] += buf[k++];
 }
@@ -554,7 +718,9 @@ void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
 double PairSaltdemViscous::memory_usage()
 {
   return PairSaltdem::memory_usage() +
-      (2.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0)) * nmax * sizeof(double);
+      (2.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0)) * nmax *
+      sizeof(double) +
+      (double) subpairs.capacity() * sizeof(SubPair);
 }
 
 /* the dashpots from the viscosity, which may have been changed through extract("eta") since
@@ -576,17 +742,18 @@ void PairSaltdemViscous::derive(int i, int j)
   const double e = eta[i][j];
   p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
   p.ih2 = (p.h > 0.0) ? 0.5 / p.h : 0.0;
-  p.kfac = 2.0 * correction * e * p.cw;
+  p.kvisc = 2.0 * correction * e * p.cw;
+  p.kfac = (substeps > 1) ? 0.0 : p.kvisc;    // sub-stepped: not in the force pass
   p.gn = calibration * e;
   p.gt = p.ratio * p.gn;
-  if (!std::isfinite(p.cw) || !std::isfinite(p.kfac) || !std::isfinite(p.gn) ||
+  if (!std::isfinite(p.cw) || !std::isfinite(p.kvisc) || !std::isfinite(p.gn) ||
       !std::isfinite(p.gt) || !std::isfinite(p.ih2))
     error->all(FLERR,
                "Pair style {}: the dashpot coefficients of types {} {} are not finite (2 "
                "correction eta W'(h) = {}, calibration eta = {}, tangential ratio x that = {}) "
                "from eta = {}, h = {}, correction = {}, calibration = {}, tangential ratio = {}; "
                "use values of physical size",
-               name, i, j, p.kfac, p.gn, p.gt, e, p.h, correction, calibration, p.ratio);
+               name, i, j, p.kvisc, p.gn, p.gt, e, p.h, correction, calibration, p.ratio);
   eta[j][i] = e;
 }
 
@@ -651,10 +818,12 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
   if (p.mode == SaltDEM::VISCOUS_FLUID) {
     // V = 1/sum W is not known before the first step: bound it by the
     // disc volume over a packing fraction of 0.7
-    lim = viscfactor * 0.175 * mv * p.h * p.h / (correction * e * f2v);
-    formula = fmt::format("dt < {} * 0.175 S rho h^2 / (correction eta), rho the disc density, "
-                          "h = {:.6g}, correction = {:.6g}",
-                          viscfactor, p.h, correction);
+    // (sub-stepped: the same limit on each of the substeps steps of dt / substeps)
+    lim = substeps * viscfactor * 0.175 * mv * p.h * p.h / (correction * e * f2v);
+    formula = fmt::format("dt{} < {} * 0.175 S rho h^2 / (correction eta), rho the disc "
+                          "density, h = {:.6g}, correction = {:.6g}",
+                          substeps > 1 ? fmt::format(" / substeps {}", substeps) : "", viscfactor,
+                          p.h, correction);
     // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c
     if (p.K > 0.0) {
       const double c = sqrt(p.K * f2v / (0.7 * mv));
@@ -672,10 +841,15 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
                           viscfactor, rot, calibration, p.ratio, m);
   }
   consider_limit(lim, best, why, [&] {
-    return fmt::format("eta = {:.6g} of types {} {} ({}); a larger dt needs a smaller eta "
-                       "or more inertia for the viscous discs ('fix saltdem/nve ... inertia "
-                       "S' with S >= {:.3g} times the present one)",
-                       e, i, j, formula, update->dt / lim);
+    // (the factor on S only where the step exceeds the limit: the error, not the log)
+    return fmt::format(
+        "eta = {:.6g} of types {} {} ({}); a larger dt needs a smaller eta, "
+        "more inertia for the viscous discs ('fix saltdem/nve ... inertia "
+        "S'{}){}",
+        e, i, j, formula,
+        update->dt > lim ? fmt::format(" with S >= {:.3g} times the present one", update->dt / lim)
+                         : "",
+        p.mode == SaltDEM::VISCOUS_FLUID ? " or viscous sub-steps (substeps N)" : "");
   });
 }
 
@@ -686,7 +860,10 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
 
 std::vector<std::string> PairSaltdemViscous::setting_names() const
 {
-  return {"calibration", "correction", "dtfactor", "viscfactor", "fill"};
+  // (the settings of the layout being read: 1 before fill, 2 before substeps)
+  if (layout_read == 1) return {"calibration", "correction", "dtfactor", "viscfactor"};
+  if (layout_read == 2) return {"calibration", "correction", "dtfactor", "viscfactor", "fill"};
+  return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps"};
 }
 
 void PairSaltdemViscous::pack_settings(double *v) const
@@ -696,6 +873,7 @@ void PairSaltdemViscous::pack_settings(double *v) const
   v[2] = dtfactor;
   v[3] = viscfactor;
   v[4] = fill_max;
+  v[5] = substeps;
 }
 
 void PairSaltdemViscous::unpack_settings(const double *v)
@@ -704,7 +882,8 @@ void PairSaltdemViscous::unpack_settings(const double *v)
   correction = v[1];
   dtfactor = v[2];
   viscfactor = v[3];
-  fill_max = v[4];
+  fill_max = (layout_read == 1) ? DEFAULT_FILL_MAX : v[4];
+  substeps = (layout_read == 1 || layout_read == 2) ? 1 : (int) v[5];
 }
 
 std::vector<std::string> PairSaltdemViscous::coeff_names() const

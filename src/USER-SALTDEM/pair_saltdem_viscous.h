@@ -42,6 +42,7 @@ class PairSaltdemViscous : public PairSaltdem {
   void init_style() override;
   double init_one(int, int) override;
   void *extract(const char *, int &) override;
+  bool set_substeps(int n) override;
   void pre_loop() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
@@ -59,6 +60,8 @@ class PairSaltdemViscous : public PairSaltdem {
   double fluid_h(int t) const;
   double fluid_K(int t) const;
   void kernel_density(double *out, double *interior);
+  // the viscous sub-steps (substeps > 1; the density fix calls it once all forces are in)
+  void apply_substeps();
 
   // the force law, inlined into the shared pair loop (PairSaltdem::loop; defined in
   // saltdem_pair_loop.h): FLUID pairs need only positions and velocities of the centres and
@@ -75,6 +78,18 @@ class PairSaltdemViscous : public PairSaltdem {
   // FLUID mode: the Morris sum over a disordered polydisperse pack with volumes m/rho
   // returns eta_eff = 0.955 eta (channel flows, h = 1.45 spacings); this restores eta
   static constexpr double DEFAULT_CORRECTION = 1.047;
+
+  // FLUID: the Morris viscosity is a linear operator on the velocities (a graph Laplacian
+  // weighted by g_ij = kvisc V_i V_j (1 - r/2h)^3).  With substeps N > 1 the force pass leaves
+  // it out and viscous_substeps() applies it after that pass: N explicit steps of dt/N on
+  // the velocities at the frozen positions and coefficients, whose mean force is added to
+  // each particle.  N = 1 is the plain explicit force; the viscous stable limit grows N-fold
+  // for about the cost of one pass over the stored pairs per sub-step.
+  static constexpr int MAX_SUBSTEPS = 64;
+  struct SubPair {
+    int i, j;
+    double c;    // kvisc (1 - r/2h)^3 of the pair, then its weight g_ij = c V_i V_j
+  };
 
  protected:
   SaltDEM::ViscousParams **params;
@@ -100,6 +115,13 @@ class PairSaltdemViscous : public PairSaltdem {
   double viscfactor;    // safety factor on the viscous stable dt
   double fill_max;      // FLUID: the largest boundary fill (1: boundaries count as themselves)
   static constexpr double DEFAULT_FILL_MAX = 1.0;    // (off: see the pair's doc page)
+  int substeps;                     // FLUID: viscous sub-steps per time step (1: in the force pass)
+  std::vector<SubPair> subpairs;    // substeps > 1: the FLUID pairs within 2h (kernel_moments)
+  double *usub, *fsub;              // substeps > 1: sub-step velocities and forces (3 per atom)
+  std::vector<std::pair<int, double>> integrators;    // groupbit, inertia scale (-1 prescribed)
+  int comm_mode;                                      // COMM_PRESSURE or COMM_SUBSTEP
+  template <int DIM> void viscous_substeps();
+  int parse_substeps(const char *);
   template <int DIM> void kernel_density(double *out, double *interior);
   int moment_slots(int *slot) const;    // the slots of moment that the reverse comm sends
   template <int DIM> void kernel_moments();
@@ -112,7 +134,9 @@ class PairSaltdemViscous : public PairSaltdem {
   double range(int i, int j) const override;
   double range_abs(int i, int j) const override;
   void pair_limit(int, int, double, double, bool, double &, std::string &) override;
-  int restart_version() const override { return 2; }    // 2: the setting fill
+  // 2: the setting fill, 3: substeps; layouts 1 and 2 are read (fill 1, substeps 1)
+  int restart_version() const override { return 3; }
+  int oldest_restart_version() const override { return 1; }
   std::vector<std::string> setting_names() const override;
   void pack_settings(double *) const override;
   void unpack_settings(const double *) override;

@@ -373,7 +373,9 @@ namespace SaltDEM {
     double K;         // FLUID: bulk modulus of the equation of state P = K (rho/rho0 - 1)
     double cw;        // FLUID: |dW/dr| / r = cw (1 - r/2h)^3 (derived)
     double ih2;       // FLUID: 1 / 2h (derived)
-    double kfac;      // FLUID: 2 eta * kernel constant (derived: eta, dimension, h)
+    double kfac;      // FLUID: 2 eta * kernel constant in the force pass (derived: eta,
+                      // dimension, h; 0 when the viscosity is sub-stepped after it)
+    double kvisc;     // FLUID: 2 eta * kernel constant (derived)
     double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
     double ratio;     // CONTACT: tangential / normal dashpot coefficient
     double gn, gt;    // CONTACT: dashpot coefficients (derived: calibration * eta)

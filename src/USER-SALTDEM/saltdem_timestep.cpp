@@ -15,11 +15,12 @@
    Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
    repository: discrete-element salt tectonics)
 
-   saltdem/timestep F: sets the time step to F times the smallest stable
+   saltdem/timestep F [substeps N]: sets the time step to F times the smallest stable
    limit of the SaltDEM pair styles (alone or in pair hybrid) for the
    present atoms, coefficients and integrators - the limit their run-time
    check enforces - so that a deck states its margin instead of a number
-   that is right for one resolution only.
+   that is right for one resolution only.  substeps N first sets the viscous
+   sub-steps of pair saltdem/viscous (also of a style read from a restart file).
 ------------------------------------------------------------------------- */
 
 #include "saltdem_timestep.h"
@@ -33,12 +34,15 @@
 #include "saltdem_check.h"
 
 #include <cmath>
+#include <cstring>
 
 using namespace LAMMPS_NS;
 
 void SaltdemTimestep::command(int narg, char **arg)
 {
-  if (narg != 1) error->all(FLERR, "Illegal saltdem/timestep command: usage: saltdem/timestep F");
+  const char *usage = "saltdem/timestep F [substeps N]";
+  if (narg != 1 && !(narg == 3 && strcmp(arg[1], "substeps") == 0))
+    error->all(FLERR, "Illegal saltdem/timestep command: usage: {}", usage);
   if (domain->box_exist == 0)
     error->all(FLERR, "saltdem/timestep command before simulation box is defined");
   const double frac = SaltDEM::numeric(FLERR, arg[0], "saltdem/timestep: fraction F", lmp);
@@ -53,6 +57,18 @@ void SaltdemTimestep::command(int narg, char **arg)
     error->all(FLERR,
                "saltdem/timestep needs a SaltDEM pair style (saltdem/cohesive, "
                "saltdem/viscous; alone or in pair_style hybrid) with its coefficients set");
+  // substeps N: the viscous sub-steps of every style that has them (saltdem/viscous), which
+  // raise its viscous limit N-fold
+  if (narg == 3) {
+    const int n = utils::inumeric(FLERR, arg[2], false, lmp);
+    bool any = false;
+    for (auto pair : styles) any = pair->set_substeps(n) || any;
+    if (!any)
+      error->all(FLERR,
+                 "saltdem/timestep: substeps {} given, but no pair style has viscous sub-steps "
+                 "(saltdem/viscous)",
+                 n);
+  }
   // the coefficients of every type pair as the run's init_one() will make them (mixed,
   // derived): the limit is computed from those
   for (auto pair : styles) pair->init_coeffs();

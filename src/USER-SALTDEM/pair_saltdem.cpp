@@ -468,9 +468,12 @@ void PairSaltdem::read_restart_settings(FILE *fp)
   if (version < oldest_restart_version() || version > restart_version())
     error->all(FLERR,
                "Pair style {}: the restart file holds its coefficients in layout version {}, this "
-               "version of the style reads layouts {} to {}. Continue the run with the SaltDEM "
-               "version that wrote it, or start again from a data file (write_data) with this one",
-               name, version, oldest_restart_version(), restart_version());
+               "version of the style reads {}. Continue the run with the SaltDEM version that "
+               "wrote it, or start again from a data file (write_data) with this one",
+               name, version,
+               oldest_restart_version() == restart_version()
+                   ? fmt::format("layout {}", restart_version())
+                   : fmt::format("layouts {} to {}", oldest_restart_version(), restart_version()));
   layout_read = version;
   const auto settings = setting_names();
   read_names(fp, settings, "settings");

@@ -146,3 +146,27 @@ def test_limit_skips_a_pair_that_another_substyle_computes(lmp):
     assert got == pytest.approx(lim, rel=1e-5)
     line = [l for l in r.out.splitlines() if l.startswith("Pair style saltdem/viscous: timestep")]
     assert len(line) == 1 and "of types 1 1" in line[0], line
+
+
+def test_substeps_need_a_viscous_style(lmp):
+    """saltdem/timestep ... substeps N sets the sub-steps of saltdem/viscous; with only
+    saltdem/cohesive there is none to set, and the command says so."""
+    r = lmp(deck("saltdem/cohesive", [f"* * {COH.split(' ', 1)[1]}"],
+                 step="saltdem/timestep 0.5 substeps 2"))
+    assert_error(r, "substeps 2 given, but no pair style has viscous sub-steps")
+
+
+def test_substeps_switched_on_between_runs(lmp):
+    """A run without sub-steps, then saltdem/timestep ... substeps 2 and a second run: the
+    second run has the sub-steps' arrays (it read unallocated ones before) and twice the
+    single-step limit."""
+    style, coeffs = LAWS["fluid only"]
+    text = deck(style, coeffs, step="saltdem/timestep 0.85") + (
+        "saltdem/timestep 0.85 substeps 2\nrun 20\n")
+    r = lmp(text)
+    check_ok(r)
+    lims = [float(x) for x in re.findall(r"saltdem/timestep: timestep ([0-9.eE+-]+)", r.out)]
+    assert len(lims) == 2 and lims[1] == pytest.approx(2 * lims[0], rel=1e-6)
+    ke = [float(l.split()[3]) for l in r.out.splitlines()
+          if re.match(r"\s+\d+\s+\S+\s+\S+\s+\S+\s*$", l)]
+    assert ke and all(math.isfinite(k) for k in ke)

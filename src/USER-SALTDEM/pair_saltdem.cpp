@@ -320,12 +320,20 @@ double PairSaltdem::fix_inertia_scale(Fix *ifix)
   return s ? *s : 1.0;
 }
 
-double PairSaltdem::inertia_scale(int i)
+PairSaltdem::Integrators PairSaltdem::find_integrators()
+{
+  Integrators integrators;
+  for (auto &ifix : modify->get_fix_list())
+    if (ifix->time_integrate) integrators.emplace_back(ifix->groupbit, fix_inertia_scale(ifix));
+  return integrators;
+}
+
+double PairSaltdem::inertia_scale(int mask, const Integrators &integrators)
 {
   double scale = -1.0;    // no integrator: a wall
-  for (auto &ifix : modify->get_fix_list()) {
-    if (!ifix->time_integrate || !(atom->mask[i] & ifix->groupbit)) continue;
-    scale = fix_inertia_scale(ifix);
+  for (const auto &it : integrators) {
+    if (!(mask & it.first)) continue;
+    scale = it.second;
     if (scale < 0.0) return -1.0;
   }
   return scale;
@@ -337,8 +345,9 @@ void PairSaltdem::min_inertial_mass(double *mmin, double *mvmin)
   const bool disc = (domain->dimension == 2);
   std::vector<double> local(2 * (n + 1), DBL_MAX), both(2 * (n + 1));
   std::vector<bigint> count(n + 1, 0), all(n + 1);
+  const Integrators integrators = find_integrators();
   for (int i = 0; i < atom->nlocal; i++) {
-    const double scale = inertia_scale(i);
+    const double scale = inertia_scale(atom->mask[i], integrators);
     const int t = atom->type[i];
     const double r = atom->radius[i];
     const double vol = disc ? M_PI * r * r : 4.0 * M_PI / 3.0 * r * r * r;

@@ -179,7 +179,11 @@ class PairSaltdem : public Pair {
   // per type: the smallest inertial mass (DBL_MAX: walls only, -1: no atoms) and the smallest
   // inertial mass per disc (sphere) volume of its integrated atoms
   void min_inertial_mass(double *mmin, double *mvmin);
-  double inertia_scale(int i);
+  // the time-integrating fixes of the present fix list: group bit and inertia factor
+  using Integrators = std::vector<std::pair<int, double>>;
+  Integrators find_integrators();
+  // the inertia factor of an atom of group mask mask (-1: a wall, no integrator or prescribed)
+  static double inertia_scale(int mask, const Integrators &integrators);
   // the inertia factor a time-integrating fix gives its atoms: S of a SaltDEM integrator, 1
   // of another, -1 when it prescribes their motion (fix move, extract("prescribed"))
   static double fix_inertia_scale(class Fix *ifix);

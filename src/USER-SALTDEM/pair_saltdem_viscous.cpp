@@ -54,8 +54,9 @@ PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     pmat(nullptr), moment(nullptr), fill(nullptr), scratch(nullptr), fix_density(nullptr),
     fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
     calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.8),
-    fill_max(DEFAULT_FILL_MAX), substeps(1), usub(nullptr), fsub(nullptr), comm_mode(COMM_PRESSURE),
-    calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
+    fill_max(DEFAULT_FILL_MAX), substeps(1), usub(nullptr), fsub(nullptr), ksub(nullptr),
+    fother(nullptr), comm_mode(COMM_PRESSURE), calibration_checked(DEFAULT_CALIBRATION),
+    salt_inertia(1.0)
 {
   // volume, boundary fill and pressure matrix, or the sub-step velocities; the kernel sums of
   // ghosts (newton on), or their sub-step forces
@@ -75,6 +76,8 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(scratch);
   memory->destroy(usub);
   memory->destroy(fsub);
+  memory->destroy(ksub);
+  memory->destroy(fother);
   memory->destroy(isfluid);
   memory->destroy(fluidself);
   // the salt's density is this pair style's state: it goes with it
@@ -317,10 +320,7 @@ void PairSaltdemViscous::init_style()
     fix_density->pair = this;
   }
   // the sub-steps move the atoms that a fix integrates, with the inertia it gives them
-  integrators.clear();
-  if (substeps > 1)
-    for (auto &ifix : modify->get_fix_list())
-      if (ifix->time_integrate) integrators.emplace_back(ifix->groupbit, fix_inertia_scale(ifix));
+  integrators = find_integrators();
   PairSaltdem::init_style();
 }
 
@@ -544,19 +544,12 @@ template <int DIM> void PairSaltdemViscous::viscous_substeps()
 
   for (int i = 0; i < nall; i++)
     for (int k = 0; k < 3; k++) usub[3 * i + k] = v[i][k];
-  // dt/N over the inertial mass of the owned atoms, 0 for walls
-  // the other forces of the step, held constant over the sub-steps
-  std::vector<double> kick(nlocal), fother(3 * nlocal);
-  for (int i = 0; i < nlocal; i++)
-    for (int k = 0; k < 3; k++) fother[3 * i + k] = f[i][k];
+  // the other forces of the step, held constant over the sub-steps, and dt/N over the
+  // inertial mass of the owned atoms (0 for walls)
   for (int i = 0; i < nlocal; i++) {
-    double scale = -1.0;
-    for (const auto &it : integrators) {
-      if (!(mask[i] & it.first)) continue;
-      scale = it.second;
-      if (scale < 0.0) break;
-    }
-    kick[i] = (scale > 0.0) ? hdt / (scale * m[i]) : 0.0;
+    for (int k = 0; k < 3; k++) fother[3 * i + k] = f[i][k];
+    const double scale = inertia_scale(mask[i], integrators);
+    ksub[i] = (scale > 0.0) ? hdt / (scale * m[i]) : 0.0;
   }
 
   // the pair weights g_ij = c V_i V_j (the volumes of the force pass; a boundary partner's
@@ -596,7 +589,7 @@ template <int DIM> void PairSaltdemViscous::viscous_substeps()
     for (int i = 0; i < nlocal; i++)
       for (int k = 0; k < DIM; k++) {
         f[i][k] += fsub[3 * i + k] * inv_n;
-        usub[3 * i + k] += kick[i] * (fsub[3 * i + k] + fother[3 * i + k]);
+        usub[3 * i + k] += ksub[i] * (fsub[3 * i + k] + fother[3 * i + k]);
       }
     if (step + 1 < n) comm->forward_comm(this);
   }
@@ -605,7 +598,8 @@ template <int DIM> void PairSaltdemViscous::viscous_substeps()
 
 void PairSaltdemViscous::grow_arrays()
 {
-  if (atom->nmax <= nmax) return;
+  // (sub-steps may be switched on between runs: saltdem/timestep ... substeps N)
+  if (atom->nmax <= nmax && (substeps < 2 || usub)) return;
   memory->destroy(vol);
   memory->destroy(pmat);
   memory->destroy(moment);
@@ -613,12 +607,16 @@ void PairSaltdemViscous::grow_arrays()
   memory->destroy(scratch);
   memory->destroy(usub);
   memory->destroy(fsub);
-  nmax = atom->nmax;
+  memory->destroy(ksub);
+  memory->destroy(fother);
+  nmax = MAX(nmax, atom->nmax);
   memory->create(vol, nmax, "pair:vol");
   memory->create(fill, nmax, "pair:fill");
   if (substeps > 1) {
     memory->create(usub, 3 * nmax, "pair:usub");
     memory->create(fsub, 3 * nmax, "pair:fsub");
+    memory->create(ksub, nmax, "pair:ksub");
+    memory->create(fother, 3 * nmax, "pair:fother");
   }
   memory->create(pmat, SaltDEM::NSYM * nmax, "pair:pmat");
   memory->create(moment, NMOM * nmax, "pair:moment");
@@ -917,9 +915,10 @@ void PairSaltdemViscous::unpack_coeffs(int i, int j, const double *v)
 double PairSaltdemViscous::find_salt_inertia()
 {
   double s = 0.0, all = 0.0;
+  const Integrators now = find_integrators();    // (also asked before the run's init)
   if (allocated)
     for (int i = 0; i < atom->nlocal; i++)
-      if (setflag[atom->type[i]][atom->type[i]]) s = MAX(s, inertia_scale(i));
+      if (setflag[atom->type[i]][atom->type[i]]) s = MAX(s, inertia_scale(atom->mask[i], now));
   MPI_Allreduce(&s, &all, 1, MPI_DOUBLE, MPI_MAX, world);
   return (all > 0.0) ? all : 1.0;
 }

@@ -118,8 +118,9 @@ class PairSaltdemViscous : public PairSaltdem {
   int substeps;                     // FLUID: viscous sub-steps per time step (1: in the force pass)
   std::vector<SubPair> subpairs;    // substeps > 1: the FLUID pairs within 2h (kernel_moments)
   double *usub, *fsub;              // substeps > 1: sub-step velocities and forces (3 per atom)
-  std::vector<std::pair<int, double>> integrators;    // groupbit, inertia scale (-1 prescribed)
-  int comm_mode;                                      // COMM_PRESSURE or COMM_SUBSTEP
+  double *ksub, *fother;      // substeps > 1: dt/N over the inertial mass; the step's other forces
+  Integrators integrators;    // the time integrators at init (find_integrators)
+  int comm_mode;              // COMM_PRESSURE or COMM_SUBSTEP
   template <int DIM> void viscous_substeps();
   int parse_substeps(const char *);
   template <int DIM> void kernel_density(double *out, double *interior);

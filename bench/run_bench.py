@@ -3,13 +3,18 @@
 
 Runs bench/bench_scene.in - the Expt 1 scene with the SaltDEM styles and the same packing with
 stock gran/hooke/history, in one LAMMPS invocation - on 1 MPI rank, 2 MPI ranks and 1 rank with
-2 OpenMP threads, and writes
+2 OpenMP threads (and, on request, 4 MPI ranks: mpi4), and writes
 
   OUT/results.json   every run: atoms, steps, loop time, atom-steps/s (wall clock and per
-                     CPU second of the process), LAMMPS's timing breakdown (Pair, Neigh, Comm, Output, Modify, Other: % of the loop time),
-                     neighbour list builds; ratios SaltDEM/stock per configuration, speed-ups of
-                     2 ranks and 2 threads over 1, the machine, and the projected wall time of
-                     the full Expt 1 (--project-atoms discs, --project-steps steps)
+                     CPU second of the process), LAMMPS's timing breakdown (Pair, Neigh, Comm,
+                     Output, Modify, Other: % of the loop time, and min/avg/max seconds over the
+                     ranks), the MPI processor grid, the ghost atom cutoff, Nlocal, Nghost and
+                     Neighs (ave/max/min over the ranks), neighbour list builds, and whether
+                     the run had fewer cores than ranks x threads (oversubscribed: its timings
+                     are not speed, its counts are valid); ratios SaltDEM/stock per
+                     configuration, speed-ups over 1 rank, the machine, and the projected wall
+                     time of the full Expt 1 (--project-atoms discs, --project-steps steps).
+                     bench/scaling_model.py fits a strong-scaling model to these.
   OUT/results.txt    the same as a readable table
   OUT/logs/          the LAMMPS logs
 
@@ -33,7 +38,12 @@ CONFIGS = {
     "serial": dict(np=1, omp=0, label="1 rank, 1 thread"),
     "mpi2": dict(np=2, omp=0, label="2 MPI ranks"),
     "omp2": dict(np=1, omp=2, label="1 rank, 2 OpenMP threads"),
+    # 4 ranks: on a machine with fewer cores oversubscribed - its counts (ghosts, pairs and
+    # atoms per rank, processor grid) are valid, its timings are not speed
+    "mpi4": dict(np=4, omp=0, label="4 MPI ranks"),
 }
+# the histogram lines of the log's end-of-run statistics
+COUNTS = ("Nlocal", "Nghost", "Neighs")
 
 
 def parse_args(argv=None):
@@ -55,6 +65,7 @@ def parse_args(argv=None):
     p.add_argument("--nsteps", type=int, default=1000, help="timed steps per style")
     p.add_argument("--styles", default="saltdem stock", help="styles to run (saltdem, stock)")
     p.add_argument("--configs", default="serial,mpi2,omp2",
+                   # mpi4 on request: bench/scaling_model.py wants serial,mpi2,mpi4
                    help="comma list of: " + ", ".join(CONFIGS))
     p.add_argument("--var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
                    help="extra -var NAME VALUE for the deck (e.g. skin 2.5)")
@@ -104,10 +115,20 @@ def parse_log(text):
     loop time and the breakdown of the 'MPI task timing breakdown' table (% of total)."""
     runs = []
     cur = None
+    grid = cutghost = None
     lines = text.splitlines()
     for k, line in enumerate(lines):
+        m = re.match(r"\s+(\d+) by (\d+) by (\d+) MPI processor grid", line)
+        if m:
+            grid = [int(g) for g in m.groups()]
+        m = re.match(r"\s+ghost atom cutoff = ([0-9.eE+-]+)", line)
+        if m:
+            cutghost = float(m.group(1))
         if line.startswith("BENCH begin"):
-            cur = dict(style=line.split("style=")[1].strip(), breakdown={})
+            # the grid and cutoff the timed run was set up with: the last ones printed before it
+            # (the warm-up run's setup, the same neighbour settings)
+            cur = dict(style=line.split("style=")[1].strip(), breakdown={}, grid=grid,
+                       ghost_cutoff=cutghost)
         elif cur is not None and line.startswith("Loop time of"):
             m = re.match(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms",
                          line)
@@ -122,7 +143,21 @@ def parse_log(text):
             for row in lines[k + 2:k + 2 + len(SECTIONS)]:
                 s = [c.strip() for c in row.split("|")]
                 if len(s) >= 6 and s[0] in SECTIONS:
-                    cur["breakdown"][s[0]] = dict(avg_seconds=float(s[2]), percent=float(s[5]))
+                    d = dict(avg_seconds=float(s[2]), percent=float(s[5]))
+                    if s[1] and s[3]:
+                        # min and max over the ranks (LAMMPS leaves them out for Other)
+                        d.update(min_seconds=float(s[1]), max_seconds=float(s[3]))
+                        d["imbalance"] = d["max_seconds"] / d["avg_seconds"] \
+                            if d["avg_seconds"] > 0 else None
+                    cur["breakdown"][s[0]] = d
+        elif cur is not None and line.split(":")[0] in COUNTS and " ave " in line:
+            m = re.match(r"(\w+):\s+([0-9.eE+-]+) ave\s+([0-9.eE+-]+) max\s+([0-9.eE+-]+) min",
+                         line)
+            if m and m.group(1) not in cur.get("counts", {}):
+                cur.setdefault("counts", {})[m.group(1)] = dict(
+                    ave=float(m.group(2)), max=float(m.group(3)), min=float(m.group(4)))
+        elif cur is not None and line.startswith("Total # of neighbors"):
+            cur["neighbors_total"] = int(line.split("=")[1])
         elif cur is not None and line.startswith("Neighbor list builds"):
             cur["neighbor_builds"] = int(line.split("=")[1])
         elif cur is not None and line.startswith("Ave neighs/atom"):
@@ -185,8 +220,11 @@ def run_config(args, name, cfg, outdir):
     if [r["style"] for r in runs] != want:
         sys.exit(f"run_bench: {name}: expected results for {want}, found "
                  f"{[r['style'] for r in runs]} in {log}")
+    cores = os.cpu_count() or 1
     for r in runs:
         r.update(config=name, ranks=cfg["np"], threads=cfg["omp"] or 1)
+        # more ranks x threads than cores: the counts stand, the timings are not speed
+        r["oversubscribed"] = r["ranks"] * r["threads"] > cores
     return runs
 
 
@@ -204,6 +242,8 @@ def summarise(args, runs):
         if ("serial", style) not in by:
             continue
         base = by[("serial", style)]["rate"]
+        # (an oversubscribed configuration's speed-up is listed too, flagged in the runs: it
+        # measures the shared cores, not the ranks)
         speedup[style] = {c: by[(c, style)]["rate"] / base for c in configs
                           if c != "serial" and (c, style) in by}
     projection = {}
@@ -213,7 +253,9 @@ def summarise(args, runs):
         if c == "serial" and r.get("rate_cpu"):
             hours = args.project_atoms * args.project_steps / r["rate_cpu"] / 3600.0
             projection[f"serial-cpu/{style}"] = dict(hours=hours, days=hours / 24.0)
-    return dict(ratio_saltdem_over_stock=ratios, cpu_ratio_saltdem_over_stock=cpu_ratios,
+    oversubscribed = sorted({r["config"] for r in runs if r.get("oversubscribed")},
+                            key=list(CONFIGS).index)
+    return dict(oversubscribed=oversubscribed, ratio_saltdem_over_stock=ratios, cpu_ratio_saltdem_over_stock=cpu_ratios,
                 pair_time_ratio_saltdem_over_stock=pair_ratios,
                 speedup_over_serial=speedup,
                 projection=dict(atoms=args.project_atoms, steps=args.project_steps,
@@ -240,7 +282,27 @@ def table(result):
                    f"{r['loop_seconds']:>8.3f} {r['rate']:>13.4g} "
                    f"{r.get('cpu_percent', float('nan')):>6.1f} {r.get('rate_cpu') or float('nan'):>10.4g} "
                    + " ".join(f"{b.get(s, {}).get('percent', float('nan')):>6.1f}" for s in SECTIONS)
-                   + f" {r.get('neighbor_builds', -1):>6}")
+                   + f" {r.get('neighbor_builds', -1):>6}"
+                   + ("  OVERSUBSCRIBED" if r.get("oversubscribed") else ""))
+    out.append("")
+    out.append("per rank (ave / max / min over the ranks; imbalance = max / avg of the section's time):")
+    out.append(f"{'config':<8} {'style':<8} {'grid':>7} {'cutghost':>8} {'Nlocal':>22} "
+               f"{'Nghost':>20} {'Neighs':>26} {'Pair imb':>8} {'Comm s':>22}")
+    nan = float("nan")
+    for r in result["runs"]:
+        c = r.get("counts", {})
+        f = lambda k: "/".join(f"{c.get(k, {}).get(q, nan):.0f}" for q in ("ave", "max", "min"))
+        g = "x".join(str(v) for v in (r.get("grid") or [])[:2]) or "?"
+        cm = r["breakdown"].get("Comm", {})
+        comm = "/".join(f"{cm.get(q, nan):.3g}" for q in ("min_seconds", "avg_seconds", "max_seconds"))
+        out.append(f"{r['config']:<8} {r['style']:<8} {g:>7} {r.get('ghost_cutoff') or nan:>8.3g} "
+                   f"{f('Nlocal'):>22} {f('Nghost'):>20} {f('Neighs'):>26} "
+                   f"{r['breakdown'].get('Pair', {}).get('imbalance') or nan:>8.3f} {comm:>22}"
+                   + ("  OVERSUBSCRIBED" if r.get("oversubscribed") else ""))
+    if result["summary"].get("oversubscribed"):
+        out.append("OVERSUBSCRIBED (" + ", ".join(result["summary"]["oversubscribed"])
+                   + f"): more ranks x threads than the machine's {m['cores']} cores - the counts "
+                   "are valid, the timings and speed-ups are not speed")
     out.append("")
     s = result["summary"]
     for c, v in s["ratio_saltdem_over_stock"].items():
@@ -249,7 +311,8 @@ def table(result):
                    f"(pair time alone: {s['pair_time_ratio_saltdem_over_stock'].get(c, float('nan')):.3f})")
     for style, d in s["speedup_over_serial"].items():
         for c, v in d.items():
-            out.append(f"speed-up {style} {c} over serial: {v:.3f}")
+            over = " (oversubscribed: not speed)" if c in s.get("oversubscribed", []) else ""
+            out.append(f"speed-up {style} {c} over serial: {v:.3f}{over}")
     p = s["projection"]
     out.append(f"projected wall time, {p['atoms']:.0f} discs x {p['steps']:.3g} steps "
                "(serial-cpu: at the rate per CPU second, i.e. on an idle core):")

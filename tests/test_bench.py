@@ -1,6 +1,9 @@
 """The scene benchmark command (bench/run-bench.sh) on a tiny scene: it runs the SaltDEM styles
-and stock gran/hooke/history on 1 rank, 2 MPI ranks and 2 OpenMP threads and writes
-well-formed result files.  No wall time is asserted: a benchmark, not a timed test."""
+and stock gran/hooke/history on 1 rank, 2 MPI ranks, 2 OpenMP threads and 4 MPI ranks and
+writes well-formed result files, with the per-rank counts a scaling model needs (processor
+grid, ghost cutoff, Nlocal/Nghost/Neighs, min/avg/max of the timing breakdown) and the 4-rank
+run marked oversubscribed on a machine with fewer cores.  No wall time is asserted: a benchmark,
+not a timed test."""
 import json
 import math
 import os
@@ -11,7 +14,10 @@ import pytest
 from lmprun import ROOT, lmp_path
 
 TINY = ["--strip", "200", "--ncopy", "2", "--nlayer", "1", "--salt", "100", "--cover", "150",
-        "--nsettle", "100", "--nwarm", "20", "--nsteps", "100"]
+        "--nsettle", "100", "--nwarm", "20", "--nsteps", "100",
+        "--configs", "serial,mpi2,omp2,mpi4"]
+CONFIGS = ("serial", "mpi2", "omp2", "mpi4")
+RANKS = {"serial": (1, 1), "mpi2": (2, 1), "omp2": (1, 2), "mpi4": (4, 1)}
 
 
 @pytest.fixture(scope="module")
@@ -30,7 +36,7 @@ def test_results_are_well_formed(bench):
     res = json.loads((out / "results.json").read_text())
     runs = res["runs"]
     assert [(r["config"], r["style"]) for r in runs] == [
-        (c, s) for c in ("serial", "mpi2", "omp2") for s in ("saltdem", "stock")]
+        (c, s) for c in CONFIGS for s in ("saltdem", "stock")]
     atoms = {r["atoms"] for r in runs}
     assert len(atoms) == 1 and atoms.pop() > 300          # the same scene for every run
     for r in runs:
@@ -43,15 +49,17 @@ def test_results_are_well_formed(bench):
         assert set(b) >= {"Pair", "Neigh", "Comm", "Output", "Modify"}
         assert 95.0 < sum(v["percent"] for v in b.values()) < 105.0
         assert b["Pair"]["percent"] > 0
-        assert (r["ranks"], r["threads"]) == {"serial": (1, 1), "mpi2": (2, 1),
-                                              "omp2": (1, 2)}[r["config"]]
+        assert (r["ranks"], r["threads"]) == RANKS[r["config"]]
         assert r["procs"] == r["ranks"] * r["threads"]    # LAMMPS counts ranks x threads
+        assert r["oversubscribed"] == (r["ranks"] * r["threads"] > res["machine"]["cores"])
     s = res["summary"]
-    for c in ("serial", "mpi2", "omp2"):
+    assert s["oversubscribed"] == [c for c in CONFIGS
+                                   if RANKS[c][0] * RANKS[c][1] > res["machine"]["cores"]]
+    for c in CONFIGS:
         v = s["ratio_saltdem_over_stock"][c]
         assert math.isfinite(v) and v > 0
     for style in ("saltdem", "stock"):
-        assert set(s["speedup_over_serial"][style]) == {"mpi2", "omp2"}
+        assert set(s["speedup_over_serial"][style]) == {"mpi2", "omp2", "mpi4"}
     p = s["projection"]
     assert p["atoms"] == 47000 and p["steps"] == 1e7
     for k, v in p["wall_time"].items():
@@ -59,12 +67,54 @@ def test_results_are_well_formed(bench):
     assert res["machine"]["cores"] >= 1 and res["machine"]["cpu"]
 
 
+def test_per_rank_counts(bench):
+    """The fields of a strong-scaling model: grid, ghost cutoff, counts over the ranks, the
+    breakdown's min/avg/max."""
+    out, stdout = bench
+    res = json.loads((out / "results.json").read_text())
+    for r in res["runs"]:
+        px, py, pz = r["grid"]
+        assert px * py == r["ranks"] and pz == 1                  # 2D: no split in z
+        assert r["ghost_cutoff"] > 0
+        c = r["counts"]
+        assert set(c) == {"Nlocal", "Nghost", "Neighs"}
+        for k, v in c.items():
+            assert v["min"] <= v["ave"] <= v["max"], (r["config"], k, v)
+            assert v["min"] >= 0
+        # the owned discs add up to the scene, on every rank count
+        assert c["Nlocal"]["ave"] * r["ranks"] == pytest.approx(r["atoms"])
+        if r["ranks"] == 1:
+            assert c["Nlocal"]["max"] == r["atoms"]
+            assert c["Nghost"]["max"] == 0                         # no periodic x or y
+        else:
+            assert c["Nghost"]["max"] > 0                          # neighbours across a cut
+        for sec, d in r["breakdown"].items():
+            if sec == "Other":
+                continue
+            assert d["min_seconds"] <= d["avg_seconds"] * (1 + 1e-6) + 1e-9
+            assert d["avg_seconds"] <= d["max_seconds"] * (1 + 1e-6) + 1e-9
+            if d["avg_seconds"] > 0:
+                assert d["imbalance"] == pytest.approx(d["max_seconds"] / d["avg_seconds"])
+                if r["ranks"] * r["threads"] == 1:
+                    assert d["imbalance"] == pytest.approx(1.0)
+        if r["style"] == "stock":                                  # a plain half list
+            assert c["Neighs"]["ave"] * r["ranks"] == pytest.approx(r["neighbors_total"], rel=1e-6)
+    # the same scene cut 2 and 4 ways: more ghosts in all on 4 ranks
+    by = {(r["config"], r["style"]): r for r in res["runs"]}
+    for style in ("saltdem", "stock"):
+        g2, g4 = (by[(c, style)]["counts"]["Nghost"]["ave"] * n for c, n in (("mpi2", 2), ("mpi4", 4)))
+        assert g4 > g2
+
+
 def test_text_summary_and_logs(bench):
     out, stdout = bench
     text = (out / "results.txt").read_text()
     assert "ratio saltdem/stock (serial)" in text and "projected wall time" in text
     assert text in stdout
-    for c in ("serial", "mpi2", "omp2"):
+    assert "per rank (ave / max / min" in text
+    if res_cores(out) < 4:
+        assert "OVERSUBSCRIBED" in text and "(oversubscribed: not speed)" in text
+    for c in CONFIGS:
         log = (out / "logs" / f"{c}.log").read_text()
         assert "pair_style      gran/hooke/history" in log or "gran/hooke/history" in log
         assert log.count("BENCH result") == 2
@@ -72,3 +122,7 @@ def test_text_summary_and_logs(bench):
     log = (out / "logs" / "omp2.log").read_text()
     assert "Last active /omp style is pair_style saltdem/" in log
     assert "Last active /omp style is pair_style gran/hooke/history/omp" in log
+
+
+def res_cores(out):
+    return json.loads((out / "results.json").read_text())["machine"]["cores"]

@@ -3,7 +3,8 @@
 
 Runs bench/bench_scene.in - the Expt 1 scene with the SaltDEM styles and the same packing with
 stock gran/hooke/history, in one LAMMPS invocation - on 1 MPI rank, 2 MPI ranks and 1 rank with
-2 OpenMP threads (and, on request, 4 MPI ranks: mpi4), and writes
+2 OpenMP threads (and, on request, 4 MPI ranks: mpi4, and 2 ranks cut horizontally through the
+salt and cover layers: mpi2y), and writes
 
   OUT/results.json   every run: atoms, steps, loop time, atom-steps/s (wall clock and per
                      CPU second of the process), LAMMPS's timing breakdown (Pair, Neigh, Comm,
@@ -41,6 +42,9 @@ CONFIGS = {
     # 4 ranks: on a machine with fewer cores oversubscribed - its counts (ghosts, pairs and
     # atoms per rank, processor grid) are valid, its timings are not speed
     "mpi4": dict(np=4, omp=0, label="4 MPI ranks"),
+    # 2 ranks cut horizontally (processors 1 2 1): one rank holds the salt, the other cover only,
+    # so that the Pair times of the two tell a salt disc's cost from a cover disc's
+    "mpi2y": dict(np=2, omp=0, label="2 MPI ranks, processors 1 2 1", procgrid="1 2 1"),
 }
 # the histogram lines of the log's end-of-run statistics
 COUNTS = ("Nlocal", "Nghost", "Neighs")
@@ -65,7 +69,7 @@ def parse_args(argv=None):
     p.add_argument("--nsteps", type=int, default=1000, help="timed steps per style")
     p.add_argument("--styles", default="saltdem stock", help="styles to run (saltdem, stock)")
     p.add_argument("--configs", default="serial,mpi2,omp2",
-                   # mpi4 on request: bench/scaling_model.py wants serial,mpi2,mpi4
+                   # mpi4, mpi2y on request: bench/scaling_model.py wants serial,mpi2,mpi2y,mpi4
                    help="comma list of: " + ", ".join(CONFIGS))
     p.add_argument("--var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
                    help="extra -var NAME VALUE for the deck (e.g. skin 2.5)")
@@ -198,6 +202,8 @@ def run_config(args, name, cfg, outdir):
         cmd += ["-var", "cover", f"{args.cover:g}"]
     for k, v in args.var:
         cmd += ["-var", k, v]
+    if cfg.get("procgrid"):
+        cmd += ["-var", "procgrid", cfg["procgrid"]]
     if cfg["omp"]:
         cmd += ["-sf", "omp", "-pk", "omp", str(cfg["omp"])]
     if cfg["np"] > 1:

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Strong-scaling model of the SaltDEM scenes, fitted to the scene benchmark's 1, 2 and 4 rank runs.
 
-    bash bench/run-bench.sh --configs serial,mpi2,mpi4
+    bash bench/run-bench.sh --configs serial,mpi2,mpi2y,mpi4
     /usr/bin/python3 bench/scaling_model.py out/bench/results.json [--scene-dump DUMP]
 
 Model (docs/performance.md, "Strong scaling: model and projections").  One step on P ranks takes
@@ -12,9 +12,10 @@ Model (docs/performance.md, "Strong scaling: model and projections").  One step 
 
   N_r, N_*,r  discs owned by rank r (all, cover, salt, wall), G_r its ghost discs
   a_pair      pair-force time per step per cover-equivalent disc  <- the 1-rank run's Pair time
-  w           a salt disc's pair cost in cover discs               <- the 2-rank run's Pair
-              min / max with the two ranks' discs of each material (real cores); where the
-              2-rank split does not separate the materials, the scenes' fix balance weight 3
+  w           a salt disc's pair cost in cover discs               <- the Pair min / max of
+              the 2-rank run cut horizontally (mpi2y: processors 1 2 1, one rank holds the salt;
+              real cores) with the two ranks' discs of each material; without it (or where a
+              split does not separate the materials) the scenes' fix balance weight 3
   a_rest      the rest of the loop per disc (neighbour lists, integration, output, ...)
                                                                    <- the 1-rank run
   b           time per ghost disc (packing, sending, binning, the ghosts' share of the per-atom
@@ -66,7 +67,7 @@ def parse_args(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("results", help="results.json of bench/run-bench.sh with serial, mpi2 "
-                   "(real cores) and mpi4 (counts)")
+                   "(real cores), mpi4 (counts) and optionally mpi2y (real cores: fits w)")
     p.add_argument("--dump", default=None, help="dump of the benchmark scene (default: "
                    "bench_settled.dump next to the results file)")
     p.add_argument("--style", default="saltdem", help="style of the runs to fit (saltdem, stock)")
@@ -322,6 +323,7 @@ def fit(res, scene, args):
     """The constants from the runs; returns the model and a record of where each came from."""
     s1 = run_of(res, "serial", args.style)
     s2 = run_of(res, "mpi2", args.style)
+    s2y = run_of(res, "mpi2y", args.style)
     if s1 is None:
         sys.exit("scaling_model: the results have no serial run of style " + args.style)
     cutghost = s1.get("ghost_cutoff")
@@ -338,20 +340,27 @@ def fit(res, scene, args):
     if s2 is not None:
         # the run's own grid (its log), uniform cuts (the benchmark has no fix balance)
         dec2 = decompose(scene, 2, "grid", cutghost, grid=(s2.get("grid") or [None])[:2] or None)
-        pr = s2["breakdown"]["Pair"]
-        wsrc = "assumed (--salt-weight): the 2-rank split does not separate salt and cover, or " \
-               "gave no positive weight"
-        if s2.get("oversubscribed"):
+    # w from the horizontal cut (mpi2y) where there is one, else from mpi2's split
+    for sw in [s for s in (s2y or s2,) if s is not None]:
+        decw = decompose(scene, 2, "grid", cutghost, grid=(sw.get("grid") or [None])[:2] or None)
+        pr = sw["breakdown"]["Pair"]
+        wsrc = "assumed (--salt-weight): no Pair min/max in the 2-rank run"
+        if sw.get("oversubscribed"):
             wsrc = "assumed (--salt-weight): the 2-rank run is oversubscribed"
         elif pr.get("min_seconds") and pr.get("max_seconds"):
             R = pr["max_seconds"] / pr["min_seconds"]
-            ra, rb = dec2["ranks"]
+            ra, rb = decw["ranks"]
             cands = []
             frac = [r["salt"] / max(r["n"], 1) for r in (ra, rb)]
             if abs(frac[0] - frac[1]) < 0.1:
                 # both ranks hold salt and cover alike (vertical cuts through the layers): the
                 # Pair times cannot tell a salt disc from a cover disc
                 cands = None
+                wsrc = (f"assumed (--salt-weight): the {sw['config']} split does not separate "
+                        "salt and cover")
+            else:
+                wsrc = (f"assumed (--salt-weight): the {sw['config']} run's Pair max/min {R:.3f} "
+                        "gave no weight in 0.2-50 (timing noise?)")
             for hi, lo in ((ra, rb), (rb, ra)) if cands is not None else ():
                 # (c_hi + w s_hi) = R (c_lo + w s_lo), c = cover + wall discs
                 den = hi["salt"] - R * lo["salt"]
@@ -361,8 +370,9 @@ def fit(res, scene, args):
                         cands.append(wc)
             if cands:
                 w = min(cands, key=lambda v: abs(math.log(v / args.salt_weight)))
-                wsrc = (f"fitted: the 2-rank run's Pair max/min {R:.3f} with the ranks' salt and "
-                        "cover counts from the dump")
+                wsrc = (f"fitted: the {sw['config']} run's Pair max/min {R:.3f} with the ranks' "
+                        "salt and cover counts from the dump")
+                break
     rec["w"] = dict(value=w, source=wsrc)
     a_pair = P1 / (n1["cover"] + w * n1["salt"] + n1["wall"])
     a_rest = (T1 - P1) / sum(n1.values())
@@ -400,11 +410,13 @@ def fit(res, scene, args):
 def validate(res, scene, m, args):
     """Measured against modelled: grids, ghosts, atoms per rank, the 2-rank time."""
     out = {}
-    for config, P in (("mpi2", 2), ("mpi4", 4)):
+    for config, P in (("mpi2", 2), ("mpi2y", 2), ("mpi4", 4)):
         r = run_of(res, config, args.style)
         if r is None:
             continue
-        dec = decompose(scene, P, "grid", m.cutghost)
+        # mpi2y: processors 1 2 1, the model's grid is the measured one by construction
+        dec = decompose(scene, P, "grid", m.cutghost,
+                        grid=(r.get("grid") or [1, 2])[:2] if config == "mpi2y" else None)
         nl = [x["n"] for x in dec["ranks"]]
         v = dict(grid_measured=(r.get("grid") or [None, None])[:2], grid_model=dec["grid"],
                  nghost_measured=r.get("counts", {}).get("Nghost"), nghost_model=ghost_summary(dec),

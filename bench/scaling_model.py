@@ -96,6 +96,10 @@ def parse_args(argv=None):
                    help="a measured 2-rank time per step of the real full Expt 1 (s), e.g. 0.0083 "
                    "(2 sub-steps, fix balance, idle machine): with --scene-dump and "
                    "--one-core-step, b refitted to it on the dump's balanced 2-rank split")
+    p.add_argument("--pair-fraction", type=float, default=None,
+                   help="with --one-core-step: the share of the real one-core step spent in the "
+                   "pair styles (e.g. 0.78, the full Expt 1's profile: salt 37 + 20 %%, cover "
+                   "21 %%), in place of the benchmark's serial split")
     p.add_argument("--out", default=None, help="output JSON (default scaling-model.json next to "
                    "the results)")
     return p.parse_args(argv)
@@ -436,6 +440,7 @@ def validate(res, scene, m, args):
             decm = decompose(scene, P, "grid", m.cutghost, grid=v["grid_measured"])
             pw = [m.a_pair * (x["cover"] + m.w * x["salt"] + x["wall"]) for x in decm["ranks"]]
             v.update(step_measured=T, step_fitted=m.step(decm),
+                     step_fitted_overhead=m.step_overhead(decm),
                      step_predicted_from_serial_only=m0.step(decm),
                      pair_imbalance_measured=pr.get("imbalance"),
                      pair_imbalance_model=max(pw) / np.mean(pw) if np.mean(pw) > 0 else None)
@@ -490,9 +495,15 @@ def main(argv=None):
     valid = validate(res, bench, m, args)
     steps = args.nsettle + args.target / (args.rate * args.dt)
     dens = densities(bench, salt, cover, width)
-    scenes = expt_scenes(dens)
+    real = None
     if args.scene_dump:
-        scenes["expt1-dump"] = dump_scene(args.scene_dump, "full Expt 1 (dump)", 6250.0, 2750.0)
+        real = dump_scene(args.scene_dump, "full Expt 1 (dump)", 6250.0, 2750.0)
+        # the real scene's densities for the uniform sections (the benchmark's tiled pack, and
+        # a small one most, is a little looser)
+        dens = densities(real, 1000.0, 1750.0, 6250.0)
+    scenes = expt_scenes(dens)
+    if real is not None:
+        scenes["expt1-dump"] = real
     proj = {k: project(s, m, args, steps) for k, s in scenes.items()}
     if "expt1-dump" in scenes:
         # what LAMMPS reports for this scene on 2 ranks before any fix balance (uniform cut)
@@ -507,10 +518,19 @@ def main(argv=None):
         scale = args.one_core_step / proj[key]["serial_step_s"]
         mc = m.copy()
         note = f"a_pair, a_rest, b x {scale:.4g} (the real one-core step over the model's)"
+        if args.pair_fraction is not None:
+            # the real step's own split between the pairs and the rest (its profile)
+            c = scenes[key].counts()
+            T = args.one_core_step
+            mc.w = args.salt_weight
+            mc.a_pair = args.pair_fraction * T / (c["cover"] + mc.w * c["salt"] + c["wall"]) / scale
+            mc.a_rest = (1 - args.pair_fraction) * T / sum(c.values()) / scale
+            note += (f"; pair share {args.pair_fraction:g} of it (--pair-fraction), salt weight "
+                     f"{mc.w:g} (--salt-weight)")
         if args.two_rank_step and key == "expt1-dump":
             # b from the real 2-rank step on the dump's balanced split (the scenes' fix balance)
             dec = decompose(scenes[key], 2, "grid+balance", m.cutghost)
-            ms = m.copy(scale, b=0.0)
+            ms = mc.copy(scale, b=0.0)
             slow = max(dec["ranks"], key=lambda r: ms.compute(r))
             rest = args.two_rank_step - ms.step(dec)
             mc.b = max(rest, 0.0) / slow["ghost"] / scale
@@ -535,7 +555,8 @@ def main(argv=None):
             lat[f"{L:g}"][k] = [base / ml.step(d) / args.node,
                                 base / ml.step_overhead(d) / args.node]
     out = dict(results=str(rpath), dump=str(dump), measured_machine=res.get("machine"),
-               model=rec, bench_scene=dict(counts=bench.counts(), densities=dens),
+               model=rec, bench_scene=dict(counts=bench.counts()), densities=dict(
+                   dens, source="the --scene-dump" if real is not None else "the benchmark scene"),
                validation=valid, steps=dict(full_preset=steps, dt=args.dt, rate=args.rate,
                                             target=args.target, nsettle=args.nsettle),
                projections=proj, calibrated=calibrated,
@@ -571,11 +592,12 @@ def report(o, args):
                  f"{nl.get('max')}/{nl.get('min')} model {v['nlocal_model']['max']}/{v['nlocal_model']['min']}"
                  + ("  (oversubscribed: counts only)" if v["oversubscribed"] else ""))
         if "step_measured" in v:
-            L.append(f"     step measured {v['step_measured'] * 1e3:.3f} ms, fitted "
-                     f"{v['step_fitted'] * 1e3:.3f} ms, predicted from the 1-rank run and the "
+            L.append(f"     step measured {v['step_measured'] * 1e3:.3f} ms, model "
+                     f"{v['step_fitted'] * 1e3:.3f} ms (ghost cost b) / "
+                     f"{v['step_fitted_overhead'] * 1e3:.3f} ms (overhead k), predicted from the 1-rank run and the "
                      f"geometry alone {v['step_predicted_from_serial_only'] * 1e3:.3f} ms; Pair "
-                     f"max/avg measured {v['pair_imbalance_measured']} model "
-                     f"{v['pair_imbalance_model']}")
+                     f"max/avg measured {v['pair_imbalance_measured'] or float('nan'):.3f} model "
+                     f"{v['pair_imbalance_model'] or float('nan'):.3f}")
     st = o["steps"]
     L.append(f"steps of a full run: {st['nsettle']} + {st['target']:g} m / ({st['rate']:g} m/s x "
              f"{st['dt']:g} s) = {st['full_preset']:.4g}")

@@ -78,6 +78,9 @@ def parse_args(argv=None):
                    help="a salt disc's pair cost in cover discs where the runs cannot fit it "
                    "(default 3, the scenes' fix balance weight; the full Expt 1's profile gives "
                    "4.5: docs/performance.md)")
+    p.add_argument("--scene-size", type=float, nargs=3, default=[6250.0, 1000.0, 1750.0],
+                   metavar=("WIDTH", "SALT", "COVER"),
+                   help="section of the --scene-dump (m; default the full Expt 1's)")
     p.add_argument("--latency", type=float, default=1e-6, help="MPI message latency (s)")
     p.add_argument("--passes", type=int, default=8, help="halo exchanges per step")
     p.add_argument("--allreduce", type=int, default=1, help="global reductions per step")
@@ -497,10 +500,11 @@ def main(argv=None):
     dens = densities(bench, salt, cover, width)
     real = None
     if args.scene_dump:
-        real = dump_scene(args.scene_dump, "full Expt 1 (dump)", 6250.0, 2750.0)
+        W, S, C = args.scene_size
+        real = dump_scene(args.scene_dump, "full Expt 1 (dump)", W, S + C)
         # the real scene's densities for the uniform sections (the benchmark's tiled pack, and
         # a small one most, is a little looser)
-        dens = densities(real, 1000.0, 1750.0, 6250.0)
+        dens = densities(real, S, C, W)
     scenes = expt_scenes(dens)
     if real is not None:
         scenes["expt1-dump"] = real

@@ -32,6 +32,7 @@ def model(tmp_path_factory):
     # the benchmark's own scene as the "real" dump: exercises the calibration path
     cmd = ["/usr/bin/python3", str(ROOT / "bench" / "scaling_model.py"), str(out / "results.json"),
            "--pmax", str(PMAX), "--node", str(NODE), "--scene-dump", str(out / "bench_settled.dump"),
+           "--scene-size", "400", "100", "150",
            "--one-core-step", "0.0142", "--two-rank-step", "0.0083"]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]

@@ -59,6 +59,8 @@ import sys
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "python"))
+from saltdem_post.dump import read_frame  # noqa: E402  (the package's dump reader)
 KINDS = ("grid", "grid+balance", "strips", "strips+balance")
 SALT_WEIGHT_DECKS = 3.0      # examples/scene/frames.in: fix balance ... weight group 1 salt 3.0
 
@@ -123,21 +125,10 @@ class Scene:
         return {k: int(np.sum(self.types == t)) for k, t in (("cover", 1), ("salt", 2), ("wall", 3))}
 
 
-def read_dump(path):
-    """The last frame of a LAMMPS text dump with id, type, x, y columns."""
-    lines = pathlib.Path(path).read_text().splitlines()
-    starts = [k for k, l in enumerate(lines) if l.startswith("ITEM: TIMESTEP")]
-    k = starts[-1]
-    n = int(lines[k + 3])
-    box = [[float(v) for v in lines[k + 5 + d].split()[:2]] for d in range(3)]
-    cols = lines[k + 8].split()[2:]
-    data = np.array([l.split() for l in lines[k + 9:k + 9 + n]], dtype=float)
-    ix, it, iy = cols.index("x"), cols.index("type"), cols.index("y")
-    return box, data[:, it].astype(int), data[:, ix], data[:, iy]
-
-
 def dump_scene(path, name, width=None, height=None):
-    box, t, x, y = read_dump(path)
+    f = read_frame([str(path)], -1)
+    box = [[float(f.box.lo[d]), float(f.box.hi[d])] for d in range(3)]
+    t, x, y = f["type"].astype(int), f.x, f.y
     if width is None:       # the section: the extent of the cover and salt discs
         pack = t < 3
         width = float(x[pack].max() - x[pack].min())

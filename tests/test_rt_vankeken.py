@@ -4,8 +4,9 @@ numbers are in docs/validation.md, section 4.5).
 
 Two fluid types of disc density 2160 and 2400 kg/m^3; the light layer's first Fourier mode grows
 at the analytic Stokes rate (0.0109402 per t_b) within the error measured at this resolution
-(0.960 of it over 5-20 t_b: 0.943-0.964 over the windows 2-20 to 5-40 t_b), and does not grow at
-all when the two densities are equal."""
+(0.950 of it over 5-20 t_b with the volume-weighted sums; 0.960 with the partners' own masses,
+0.943-0.964 over the windows 2-20 to 5-40 t_b), and does not grow at all when the two densities
+are equal."""
 import os
 import subprocess
 import sys
@@ -18,7 +19,7 @@ from lmprun import ROOT, lmp_path
 sys.path.insert(0, str(ROOT / "bench"))
 import rt_vankeken as rt  # noqa: E402
 
-MEASURED = 0.960     # gamma / analytic at n 20, fitted over 5-20 t_b (bench/rt_vankeken.in defaults)
+MEASURED = 0.950     # gamma / analytic at n 20, fitted over 5-20 t_b (bench/rt_vankeken.in defaults)
 TOL = 0.03           # the spread of the fitted rate over reasonable windows at n 20 (0.943-0.964)
 
 

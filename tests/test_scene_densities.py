@@ -102,13 +102,13 @@ def pack_positions(path):
 
 
 def test_reference_density_follows_the_salt(runs):
-    """the SPH salt's reference density is a kernel density of the masses: with salt and cover
-    both at 2160 it is 2160/2200 of the paper's, a little more for the salt next to the walls
-    (their discs keep 2200: measured +0.2 %); with a denser cover the salt next to it counts the
-    cover's masses too, so it lies above that"""
+    """the SPH salt's reference density is a kernel density that counts each partner as salt
+    (its size times the salt's material density, PairSaltdemViscous::pair_weights): 2160/2200
+    of the paper's whatever the density of the walls (2200) and of the cover beside it (2160 or
+    2500).  (With the partners' own masses the walls raised it by 0.2 % and the 2500 cover by
+    more: a denser neighbour read as compressed salt.)"""
     p = rho0(runs["paper"][1])
-    light = rho0(runs["light"][1])
-    assert p * 2160 / 2200 < light < p * 2160 / 2200 * 1.005
-    assert light < rho0(runs["buoyant"][1]) < p * 2500 / 2200
+    assert rho0(runs["light"][1]) == pytest.approx(p * 2160 / 2200, rel=1e-9)
+    assert rho0(runs["buoyant"][1]) == pytest.approx(p * 2160 / 2200, rel=1e-9)
     assert "contrast" not in runs["paper"][1].split("fix             scale")[-1].split("\n")[0]
     assert re.search(r"buoyancy: density contrast 340 ", runs["buoyant"][1])

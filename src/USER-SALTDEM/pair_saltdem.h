@@ -95,13 +95,13 @@ class PairSaltdem : public Pair {
   // the serial and the threaded styles.  The derived style's inline law
   //   template <int DIM, int EVFLAG> int law(const Atoms &, int i, int j, int itype,
   //     int jtype, double r, double *hist, bool advance, double *f, double *ti,
-  //     double *tj, double &evdwl, double &q)
+  //     double *tj, double &evdwl, double *q)
   // computes the kinematics it needs, fills the force on i (and torques on i
   // and j if it returns LAW_TORQUE) and returns LAW_* flags (Derived::HISTORY:
   // whether hist is used, a compile-time constant).  A law with a
   // per-atom pair sum (Derived::PAIR_SUM, e.g. the continuity density of the
-  // fluid) sets q, symmetric under i <-> j: sum[i] += m_j q, sum[j] += m_i q
-  // (sum: loop_sum(), so the sum costs no second pass).  tally() receives
+  // fluid) sets i's and j's terms of it, q[0] and q[1]: sum[i] += q[0],
+  // sum[j] += q[1] (sum: loop_sum(), so the sum costs no second pass).  tally() receives
   // (i, j, evdwl, fx, fy, fz, delx, dely, delz).  DIM 2: discs in the xy
   // plane (z parts are zero and are not touched, see saltdem_contact.h).
   template <class Derived, int EVFLAG, int DIM, class Tally>

@@ -48,7 +48,7 @@ class PairSaltdemCohesive : public PairSaltdem {
   static constexpr bool PAIR_SUM = false;
   template <int DIM, int EVFLAG>
   int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *hist, bool advance,
-          double *f, double *ti, double *tj, double &evdwl, double &) const;
+          double *f, double *ti, double *tj, double &evdwl, double *) const;
 
  protected:
   SaltDEM::CohesiveParams **params;    // per type pair coefficients (saltdem_contact.h)

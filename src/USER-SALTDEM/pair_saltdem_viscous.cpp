@@ -51,7 +51,8 @@ enum { COMM_PRESSURE, COMM_SUBSTEP };
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
-    pmat(nullptr), moment(nullptr), fill(nullptr), scratch(nullptr), fix_density(nullptr),
+    pmat(nullptr), moment(nullptr), fill(nullptr), mdens(nullptr), scratch(nullptr),
+    fix_density(nullptr),
     fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
     calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.8),
     fill_max(DEFAULT_FILL_MAX), substeps(1), usub(nullptr), fsub(nullptr), ksub(nullptr),
@@ -73,6 +74,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(pmat);
   memory->destroy(moment);
   memory->destroy(fill);
+  memory->destroy(mdens);
   memory->destroy(scratch);
   memory->destroy(usub);
   memory->destroy(fsub);
@@ -288,12 +290,14 @@ void PairSaltdemViscous::mix(int i, int j)
 void PairSaltdemViscous::init_style()
 {
   any_fluid = false;
+  influid.assign(atom->ntypes + 1, 0);
   for (int i = 1; i <= atom->ntypes; i++) {
     // (under pair hybrid, types of other sub-styles have no coefficients here)
     fluidself[i] = (setflag[i][i] && params[i][i].mode == SaltDEM::VISCOUS_FLUID) ? 1 : 0;
     isfluid[i] = (fluidself[i] && params[i][i].K > 0.0) ? 1 : 0;
     for (int j = i; j <= atom->ntypes; j++)
-      if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID) any_fluid = true;
+      if (setflag[i][j] && params[i][j].mode == SaltDEM::VISCOUS_FLUID)
+        any_fluid = influid[i] = influid[j] = 1;
   }
   // the continuity density of the fluid particles is the state of an internal fix
   // (FixSaltdemDensity), created here so that it finds its data in a restart file.  Its ID:
@@ -324,7 +328,7 @@ void PairSaltdemViscous::init_style()
   PairSaltdem::init_style();
 }
 
-/* the kernel density out[i] = sum_j m_j W_ij (j = i included) of every owned atom of a type
+/* the kernel density out[i] = sum_j mu_ij W_ij (j = i included) of every owned atom of a type
    whose own pair is FLUID, over the FLUID pairs of the list, owned and ghost atoms, and
    whether its kernel is full (interior[i] = 1: its neighbours surround it, see
    SaltDEM::INTERIOR_MAX; 0 otherwise): for the reference density (FixSaltdemDensity).  The
@@ -334,6 +338,7 @@ void PairSaltdemViscous::init_style()
 void PairSaltdemViscous::kernel_density(double *out, double *interior)
 {
   grow_arrays();
+  material_density();
   if (domain->dimension == 2)
     kernel_density<2>(out, interior);
   else
@@ -344,6 +349,7 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *
 {
   const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
   const double *m = atom->rmass;
+  const double *radius = atom->radius;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -371,15 +377,16 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *
       const double w = SaltDEM::wendland_c2(DIM, p.h, r);
       const double s = (r < 2.0 * p.h) ? 1.0 - 0.5 * r / p.h : 0.0;
       const double g = s * s * s;    // |W'|/r up to a constant
+      const double mij = partner_mass<DIM>(radius, i, j), mji = partner_mass<DIM>(radius, j, i);
       double *Mi = &moment[NMOM * i];
-      Mi[MOM_WF] += m[j] * w;
-      Mi[MOM_WB] += m[j] * g * r;
-      for (int k = 0; k < DIM; k++) Mi[k] += m[j] * g * d[k];
+      Mi[MOM_WF] += mij * w;
+      Mi[MOM_WB] += mij * g * r;
+      for (int k = 0; k < DIM; k++) Mi[k] += mij * g * d[k];
       if (newton_pair || j < nlocal) {
         double *Mj = &moment[NMOM * j];
-        Mj[MOM_WF] += m[i] * w;
-        Mj[MOM_WB] += m[i] * g * r;
-        for (int k = 0; k < DIM; k++) Mj[k] -= m[i] * g * d[k];
+        Mj[MOM_WF] += mji * w;
+        Mj[MOM_WB] += mji * g * r;
+        for (int k = 0; k < DIM; k++) Mj[k] -= mji * g * d[k];
       }
     }
   }
@@ -419,6 +426,7 @@ void PairSaltdemViscous::pre_loop()
 {
   grow_arrays();
   if (!any_fluid) return;
+  material_density();
   const int nlocal = atom->nlocal;
   const double *m = atom->rmass;
   const int *type = atom->type;
@@ -433,17 +441,24 @@ void PairSaltdemViscous::pre_loop()
   else
     kernel_moments<3>();
 
-  // a boundary particle (wall, cover) gets the volume it would have at the fluid's reference
-  // density; a fluid particle created during the run starts at its reference density
+  // a boundary particle (wall, cover) has, beside a fluid particle, the volume of the fluid it
+  // stands for (pair_weights: its mass as that fluid's over the fluid's reference density);
+  // between boundary particles, its own at the densest fluid's reference density.  A fluid
+  // particle created during the run starts at its reference density
   double rhob = 0.0;
+  irho0.assign(nt + 1, 0.0);
   for (int t = 1; t <= nt; t++)
-    if (fluidself[t]) rhob = MAX(rhob, rho0[t]);
+    if (fluidself[t] && rho0[t] > 0.0) {
+      rhob = MAX(rhob, rho0[t]);
+      irho0[t] = 1.0 / rho0[t];
+    }
   for (int i = 0; i < nlocal; i++) {
     const int t = type[i];
     const double r = fluidself[t] ? (rho[i] > 0.0 ? rho[i] : rho0[t]) : rhob;
     vol[i] = SaltDEM::particle_volume(m[i], r);
     double *M = &moment[NMOM * i];
-    fill[i] = fluidself[t] ? SaltDEM::boundary_fill(M[MOM_WF], M[MOM_WB], r, rhob, fill_max) : 1.0;
+    fill[i] = fluidself[t] ? SaltDEM::boundary_fill(M[MOM_WF], M[MOM_WB], r, rho0[t], fill_max)
+                           : 1.0;
     double *A = &pmat[NS * i];
     if (isfluid[t]) {
       const double a = SaltDEM::pressure_term(m[i], params[t][t].K, r, rho0[t]);
@@ -470,6 +485,7 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
   constexpr int NS = SaltDEM::NSYM;
   const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
   const double *m = atom->rmass;
+  const double *radius = atom->radius;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -502,13 +518,15 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
       const double W = SaltDEM::wendland_c2(DIM, p.h, r);
       // i's partner j goes into i's fluid or boundary sums, and i into j's
       if (fi) {
-        SaltDEM::add_moment<DIM>(m[j] * w, d, fj ? Mi : Mi + NS);
-        Mi[fj ? MOM_WF : MOM_WB] += m[j] * W;
+        const double mij = partner_mass<DIM>(radius, i, j);
+        SaltDEM::add_moment<DIM>(mij * w, d, fj ? Mi : Mi + NS);
+        Mi[fj ? MOM_WF : MOM_WB] += mij * W;
       }
       if (fj && (newton_pair || j < nlocal)) {
+        const double mji = partner_mass<DIM>(radius, j, i);
         double *Mj = &moment[NMOM * j];
-        SaltDEM::add_moment<DIM>(m[i] * w, d, fi ? Mj : Mj + NS);
-        Mj[fi ? MOM_WF : MOM_WB] += m[i] * W;
+        SaltDEM::add_moment<DIM>(mji * w, d, fi ? Mj : Mj + NS);
+        Mj[fi ? MOM_WF : MOM_WB] += mji * W;
       }
     }
     if (fi)
@@ -552,13 +570,12 @@ template <int DIM> void PairSaltdemViscous::viscous_substeps()
     ksub[i] = (scale > 0.0) ? hdt / (scale * m[i]) : 0.0;
   }
 
-  // the pair weights g_ij = c V_i V_j (the volumes of the force pass; a boundary partner's
-  // volume times the fluid particle's fill, as in the force law), once
+  // the pair weights g_ij = c V_i V_j (the volumes of the force pass, pair_weights), once
   const int *type = atom->type;
+  const double *radius = atom->radius;
   for (auto &sp : subpairs) {
-    const double c = !fluidself[type[sp.j]] ? fill[sp.i]
-                                            : (!fluidself[type[sp.i]] ? fill[sp.j] : 1.0);
-    sp.c *= vol[sp.i] * vol[sp.j] * c;
+    const Weights w = pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
+    sp.c *= w.vi * w.vj;
   }
   const SubPair *begin = subpairs.data(), *end = begin + subpairs.size();
   for (int step = 0; step < n; step++) {
@@ -604,6 +621,7 @@ void PairSaltdemViscous::grow_arrays()
   memory->destroy(pmat);
   memory->destroy(moment);
   memory->destroy(fill);
+  memory->destroy(mdens);
   memory->destroy(scratch);
   memory->destroy(usub);
   memory->destroy(fsub);
@@ -612,6 +630,7 @@ void PairSaltdemViscous::grow_arrays()
   nmax = MAX(nmax, atom->nmax);
   memory->create(vol, nmax, "pair:vol");
   memory->create(fill, nmax, "pair:fill");
+  memory->create(mdens, nmax, "pair:mdens");
   if (substeps > 1) {
     memory->create(usub, 3 * nmax, "pair:usub");
     memory->create(fsub, 3 * nmax, "pair:fsub");
@@ -621,6 +640,28 @@ void PairSaltdemViscous::grow_arrays()
   memory->create(pmat, SaltDEM::NSYM * nmax, "pair:pmat");
   memory->create(moment, NMOM * nmax, "pair:moment");
   if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
+}
+
+/* the material density m / r^dim of the owned and ghost atoms, which weighs a partner as
+   the particle's own material (pair_weights); a disc in a FLUID pair needs a radius */
+
+void PairSaltdemViscous::material_density()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  const double *radius = atom->radius, *m = atom->rmass;
+  const int *type = atom->type;
+  const int dim = domain->dimension;
+  for (int i = 0; i < nall; i++) {
+    const double r = radius[i];
+    const double a = (dim == 2) ? r * r : r * r * r;
+    if (!(a > 0.0) && influid[type[i]])
+      error->one(FLERR,
+                 "Pair style {}: atom {} of type {} has radius {} in a fluid pair; the fluid law "
+                 "weighs its partners by their size: give every disc a positive diameter (set "
+                 "... diameter)",
+                 name, atom->tag[i], type[i], r);
+    mdens[i] = (a > 0.0) ? m[i] / a : 0.0;
+  }
 }
 
 /* the array the force pass sums d rho / dt into (zeroed here): the density fix's; with no

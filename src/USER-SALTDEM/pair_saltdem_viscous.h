@@ -65,13 +65,23 @@ class PairSaltdemViscous : public PairSaltdem {
 
   // the force law, inlined into the shared pair loop (PairSaltdem::loop; defined in
   // saltdem_pair_loop.h): FLUID pairs need only positions and velocities of the centres and
-  // make no torque.  q: the pair's term v_ij . grad_i W_ij of the continuity equation, summed
-  // in the same pass into the density fix's d rho / dt
+  // make no torque.  q: i's and j's terms mu_ij v_ij . grad_i W_ij and mu_ji v_ij . grad_i W_ij
+  // of the continuity equation, summed in the same pass into the density fix's d rho / dt
   static constexpr bool HISTORY = false;    // no values kept per pair
   static constexpr bool PAIR_SUM = true;
   template <int DIM, int EVFLAG>
   int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *, bool, double *f,
-          double *ti, double *tj, double &evdwl, double &q) const;
+          double *ti, double *tj, double &evdwl, double *q) const;
+
+  // FLUID: what a pair weighs in its two particles' sums (kernel moments and densities,
+  // pressure, continuity): mj = mu_ij, the mass of j counted in i's sums, and mi = mu_ji, and
+  // the volumes vi, vj of the pair's viscosity (see pair_weights)
+  struct Weights {
+    double mi, mj, vi, vj;
+  };
+  template <int DIM> Weights pair_weights(const double *radius, int i, int j, int itype,
+                                          int jtype) const;
+  template <int DIM> double partner_mass(const double *radius, int i, int j) const;    // mu_ij
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
   static constexpr double DEFAULT_CALIBRATION = 1.0;
@@ -98,9 +108,13 @@ class PairSaltdemViscous : public PairSaltdem {
   double *pmat;      // FLUID: pressure matrix A = m P / rho^2 L per atom (NSYM values, see
                      // SaltDEM::pressure_matrix), owned and ghost atoms
   double *moment;    // FLUID: its kernel sums, NMOM values per atom: the moments
-                     // S = sum_j m_j w d d over its fluid and over its boundary partners
-                     // (NSYM each), the kernel sums sum_j m_j W over both (see pre_loop)
+                     // S = sum_j mu_ij w d d over its fluid and over its boundary partners
+                     // (NSYM each), the kernel sums sum_j mu_ij W over both (see pre_loop)
   double *fill;      // FLUID: the boundary fill of each fluid particle (SaltDEM::boundary_fill)
+  double *mdens;     // FLUID: material density m / r^dim of each atom, owned and ghost
+  std::vector<double> irho0;    // FLUID: 1 / reference density per type (0: none)
+  std::vector<int> influid;     // per type: in some FLUID pair (its discs need a radius)
+  void material_density();      // mdens of the owned and ghost atoms
   static constexpr int NMOM = 2 * 6 + 2;
   static constexpr int MOM_WF = 12, MOM_WB = 13;    // the kernel sums' slots
   double *scratch;    // no FLUID pair: what the force pass sums the (zero) q into

@@ -403,11 +403,12 @@ namespace SaltDEM {
 
   /* FLUID: the pressure of a particle is carried by a symmetric matrix, stored as xx, yy, xy
    (2D) or xx, yy, zz, xy, xz, yz (3D): A_i = (m_i P_i / rho_i) S_i^-1 with the kernel's second
-   moment S_i = sum_j m_j w_ij d_ij d_ij (w = |W'|/r, d = x_i - x_j, over the FLUID pairs of
-   i, boundary partners included), i.e. m P / rho^2 times the kernel-gradient correction
-   L_i = (S_i / rho_i)^-1 of Bonet & Lok (1999).  The pair force m_j A_i grad W + m_i A_j grad W
+   moment S_i = sum_j mu_ij w_ij d_ij d_ij (w = |W'|/r, d = x_i - x_j, over the FLUID pairs
+   of i, boundary partners included; mu_ij: j's mass counted as i's material, m_j for one
+   density), i.e. m P / rho^2 times the kernel-gradient correction
+   L_i = (S_i / rho_i)^-1 of Bonet & Lok (1999).  The pair force (mu_ij A_i + mu_ji A_j) grad W
    (their variational form) conserves linear momentum, and i's half of its pairs has the
-   virial sum_j w m_j d (A_i d) = S_i A_i = V_i P_i I: a particle's pressure makes an isotropic
+   virial sum_j w mu_ij d (A_i d) = S_i A_i = V_i P_i I: a particle's pressure makes an isotropic
    stress whatever the arrangement of its neighbours.  Without L (the plain SPH gradient) that
    virial is P_i V_i S_i / rho_i, whose off-diagonal part under a sheared, loaded arrangement
    made a shear stress proportional to the pressure (a friction; docs/validation.md).
@@ -458,8 +459,9 @@ namespace SaltDEM {
     S[5] = f * (xy * xz - xx * yz);
   }
 
-  /* FLUID: the SPH pressure pair matrix pm = m_j A_i + m_i A_j from the pressure matrices of
-   particles i and j, where fi, fj say whether each carries a pressure (its own pair is FLUID
+  /* FLUID: the SPH pressure pair matrix pm = mj A_i + mi A_j from the pressure matrices of
+   particles i and j (mj: the mass j counts with in i's sums, mu_ij, and mi = mu_ji; see
+   PairSaltdemViscous::pair_weights), where fi, fj say whether each carries a pressure (its own pair is FLUID
    with K > 0).  The boundary rule: a particle that carries none (a wall, the cover, a fluid
    with K = 0) mirrors its partner's pressure and correction, so the fluid's pressure pushes
    on it as on more fluid; two such particles exert none. */
@@ -495,9 +497,9 @@ namespace SaltDEM {
 
   /* FLUID at a boundary.  A boundary particle (a wall or cover disc: its own pair is not FLUID)
    stands, for a fluid particle i, for the part of i's kernel that the fluid leaves empty: with
-   the fluid's kernel sum wf = sum_{fluid j} m_j W_ij (i included) and the boundary's
-   wb = sum_{boundary j} m_j W_ij, the boundary partners of i count fill_i times their mass and
-   volume (m/rho_b, rho_b the fluid's reference density) in i's pairs, with
+   the fluid's kernel sum wf = sum_{fluid j} mu_ij W_ij (i included) and the boundary's
+   wb = sum_{boundary j} mu_ij W_ij, the boundary partners of i count fill_i times their mass
+   mu_ij and volume (mu_ij/rho_b, rho_b the reference density of i's fluid) in i's pairs, with
      fill_i = (1 - wf / rho_i) / (wb / rho_b)
    the empty fraction of the kernel over what the boundary fills of it, so that a fluid and its
    boundary together fill the kernel whatever the boundary's construction (one line of discs,
@@ -514,7 +516,7 @@ namespace SaltDEM {
 
   /* FLUID: the reference density of a type is the mean kernel density of its particles whose
    kernel is full, those whose neighbours surround them: the kernel-weighted first moment
-   |sum_j m_j w_ij d_ij| below INTERIOR_MAX of sum_j m_j w_ij |d_ij| (0 in a uniform
+   |sum_j mu_ij w_ij d_ij| below INTERIOR_MAX of sum_j mu_ij w_ij |d_ij| (0 in a uniform
    neighbourhood; measured 0.03 +- 0.02 in the bulk of a disc pack, at most 0.11, and about 0.4
    at a free surface or a single line of wall discs, whose particles have kernel densities
    15-25 % below the bulk's) */
@@ -543,9 +545,9 @@ namespace SaltDEM {
   /* FLUID: the Morris viscosity and the SPH pressure between particles of
    volumes voli, volj (m/rho) at d = x_i - x_j, r = |d|, relative velocity
    vr = v_i - v_j, radii summing to radsum; pm: the SPH pressure pair matrix
-   m_j A_i + m_i A_j (pressure_pair).  No torque.  divw:
+   mu_ij A_i + mu_ji A_j (pressure_pair).  No torque.  divw:
    v_ij . grad_i W_ij, the pair's term of the continuity equation
-   d rho_i/dt = sum_j m_j v_ij . grad_i W_ij.  Written on d rather than the
+   d rho_i/dt = sum_j mu_ij v_ij . grad_i W_ij.  Written on d rather than the
    unit normal: no division unless an elastic core acts.  Returns true while
    the discs touch. */
   template <int DIM = 3, int EVFLAG = 1>

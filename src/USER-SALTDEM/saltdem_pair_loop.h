@@ -99,7 +99,6 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
                    atom->omega ? (row) atom->omega[0] : nullptr, atom->radius, atom->rmass};
   const auto x = a.x;
   const double *radius = atom->radius;
-  const double *rmass = atom->rmass;
   const int *type = atom->type;
   const int nlocal = atom->nlocal;
   const int newton_pair = force->newton_pair;
@@ -127,7 +126,6 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
     const int jnum = numneigh[i];
     int *touch = nhist ? firsttouch[i] : nullptr;
     double *allhist = nhist ? firsthist[i] : nullptr;
-    const double mi = rmass[i];
     // what i receives is summed here and added once after its neighbours: in memory, each
     // pair would wait for the previous pair's store to f[i]
     double fi0 = 0.0, fi1 = 0.0, fi2 = 0.0, ti0 = 0.0, ti1 = 0.0, ti2 = 0.0, sumi = 0.0;
@@ -152,12 +150,12 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
         }
         continue;
       }
-      double evdwl = 0.0, q = 0.0;
+      double evdwl = 0.0, q[2] = {0.0, 0.0};
       const int flags = self->template law<DIM, EVFLAG>(a, i, j, itype, jtype, std::sqrt(rsq), hist,
                                                         advance, fij, ti, tj, evdwl, q);
       if (Derived::PAIR_SUM) {
-        sumi += rmass[j] * q;
-        if (newton_pair || j < nlocal) sum[j] += mi * q;
+        sumi += q[0];
+        if (newton_pair || j < nlocal) sum[j] += q[1];
       }
       if (nhist) {
         if (flags & LAW_TOUCH)
@@ -209,7 +207,7 @@ void PairSaltdem::loop(Derived *self, int ifrom, int ito, double **f, double **t
 template <int DIM, int EVFLAG>
 int PairSaltdemCohesive::law(const Atoms &a, int i, int j, int itype, int jtype, double r,
                              double *hist, bool advance, double *f, double *ti, double *tj,
-                             double &evdwl, double &) const
+                             double &evdwl, double *) const
 {
   SaltDEM::Contact c;
   SaltDEM::contact_kinematics<DIM>(a.x[i], a.x[j], a.v[i], a.v[j], a.omega[i], a.omega[j],
@@ -220,15 +218,44 @@ int PairSaltdemCohesive::law(const Atoms &a, int i, int j, int itype, int jtype,
       : 0;
 }
 
+/* what a FLUID pair weighs.  Sums over the partners j of a particle i count each j as i's own
+   material, mu_ij = m_j rho_m,i / rho_m,j = mdens_i r_j^dim (rho_m = m / r^dim per disc or
+   sphere: its material density), so that particles of two densities side by side see one
+   continuous kernel density and pressure (the volume-weighted sums of multiphase SPH,
+   Colagrossi & Landrini 2003, Hu & Adams 2006); for one density mu_ij = m_j.  A boundary
+   partner (its own pair is not FLUID) of a fluid particle counts with that particle's fill
+   (SaltDEM::boundary_fill) and has the volume mu_ij / rho0_i of the fluid it stands for;
+   between two boundary particles the volumes are their own (vol). */
+
+template <int DIM>
+double PairSaltdemViscous::partner_mass(const double *radius, int i, int j) const
+{
+  const double r = radius[j];
+  return mdens[i] * ((DIM == 2) ? r * r : r * r * r);
+}
+
+template <int DIM>
+PairSaltdemViscous::Weights PairSaltdemViscous::pair_weights(const double *radius, int i, int j,
+                                                             int itype, int jtype) const
+{
+  Weights w = {partner_mass<DIM>(radius, j, i), partner_mass<DIM>(radius, i, j), vol[i], vol[j]};
+  if (fluidself[itype] && !fluidself[jtype]) {
+    w.mj *= fill[i];
+    w.vj = w.mj * irho0[itype];
+  } else if (fluidself[jtype] && !fluidself[itype]) {
+    w.mi *= fill[j];
+    w.vi = w.mi * irho0[jtype];
+  }
+  return w;
+}
+
 /* the salt laws: FLUID pairs need only positions and velocities of the centres and make no
-   torque; q is the pair's term v_ij . grad_i W_ij of the continuity equation.  A boundary
-   partner (its own pair is not FLUID) of a fluid particle counts with that particle's fill:
-   its mass and volume times fill in the viscosity, the mirrored pressure and the continuity
-   sum (SaltDEM::boundary_fill) */
+   torque; q: the pair's terms of the continuity equation for i and j, mu_ij v_ij . grad_i W_ij
+   and mu_ji v_ij . grad_i W_ij (pair_weights) */
 
 template <int DIM, int EVFLAG>
 int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *,
-                            bool, double *f, double *ti, double *tj, double &evdwl, double &q) const
+                            bool, double *f, double *ti, double *tj, double &evdwl, double *q) const
 {
   const SaltDEM::ViscousParams &p = params[itype][jtype];
   if (p.mode == SaltDEM::VISCOUS_FLUID) {
@@ -236,24 +263,17 @@ int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, 
                          (DIM == 3) ? a.x[i][2] - a.x[j][2] : 0.0};
     const double vr[3] = {a.v[i][0] - a.v[j][0], a.v[i][1] - a.v[j][1],
                           (DIM == 3) ? a.v[i][2] - a.v[j][2] : 0.0};
-    double mi = a.rmass[i], mj = a.rmass[j], vi = vol[i], vj = vol[j], c = 1.0;
-    if (!fluidself[jtype]) {
-      c = fill[i];
-      mj *= c;
-      vj *= c;
-    } else if (!fluidself[itype]) {
-      c = fill[j];
-      mi *= c;
-      vi *= c;
-    }
-    // SPH pressure m_j A_i + m_i A_j with the corrected pressure matrices A (pre_loop); a
+    const Weights w = pair_weights<DIM>(a.radius, i, j, itype, jtype);
+    // SPH pressure mu_ij A_i + mu_ji A_j with the corrected pressure matrices A (pre_loop); a
     // particle that is not fluid (wall, cover) mirrors the fluid's
     double pm[SaltDEM::NSYM];
-    SaltDEM::pressure_pair<DIM>(isfluid[itype], isfluid[jtype], mi, mj, &pmat[SaltDEM::NSYM * i],
-                                &pmat[SaltDEM::NSYM * j], pm);
+    SaltDEM::pressure_pair<DIM>(isfluid[itype], isfluid[jtype], w.mi, w.mj,
+                                &pmat[SaltDEM::NSYM * i], &pmat[SaltDEM::NSYM * j], pm);
+    double divw = 0.0;
     const bool touch = SaltDEM::viscous_fluid_force<DIM, EVFLAG>(
-        p, d, vr, r, a.radius[i] + a.radius[j], vi, vj, pm, f, evdwl, q);
-    q *= c;    // (the loop multiplies by the partner's own mass)
+        p, d, vr, r, a.radius[i] + a.radius[j], w.vi, w.vj, pm, f, evdwl, divw);
+    q[0] = w.mj * divw;
+    q[1] = w.mi * divw;
     return touch ? LAW_TOUCH : 0;
   }
   SaltDEM::Contact c;

@@ -52,8 +52,7 @@ enum { COMM_PRESSURE, COMM_SUBSTEP };
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
     pmat(nullptr), moment(nullptr), fill(nullptr), mdens(nullptr), scratch(nullptr),
-    fix_density(nullptr),
-    fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
+    fix_density(nullptr), fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
     calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.8),
     fill_max(DEFAULT_FILL_MAX), substeps(1), usub(nullptr), fsub(nullptr), ksub(nullptr),
     fother(nullptr), comm_mode(COMM_PRESSURE), calibration_checked(DEFAULT_CALIBRATION),

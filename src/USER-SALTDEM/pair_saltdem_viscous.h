@@ -79,8 +79,8 @@ class PairSaltdemViscous : public PairSaltdem {
   struct Weights {
     double mi, mj, vi, vj;
   };
-  template <int DIM> Weights pair_weights(const double *radius, int i, int j, int itype,
-                                          int jtype) const;
+  template <int DIM>
+  Weights pair_weights(const double *radius, int i, int j, int itype, int jtype) const;
   template <int DIM> double partner_mass(const double *radius, int i, int j) const;    // mu_ij
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta

@@ -227,15 +227,16 @@ int PairSaltdemCohesive::law(const Atoms &a, int i, int j, int itype, int jtype,
    (SaltDEM::boundary_fill) and has the volume mu_ij / rho0_i of the fluid it stands for;
    between two boundary particles the volumes are their own (vol). */
 
-template <int DIM> double PairSaltdemViscous::partner_mass(const double *radius, int i, int j) const
+template <int DIM>
+inline double PairSaltdemViscous::partner_mass(const double *radius, int i, int j) const
 {
   const double r = radius[j];
   return mdens[i] * ((DIM == 2) ? r * r : r * r * r);
 }
 
 template <int DIM>
-PairSaltdemViscous::Weights PairSaltdemViscous::pair_weights(const double *radius, int i, int j,
-                                                             int itype, int jtype) const
+inline PairSaltdemViscous::Weights
+PairSaltdemViscous::pair_weights(const double *radius, int i, int j, int itype, int jtype) const
 {
   Weights w = {partner_mass<DIM>(radius, j, i), partner_mass<DIM>(radius, i, j), vol[i], vol[j]};
   if (fluidself[itype] && !fluidself[jtype]) {

@@ -17,7 +17,9 @@ with y from the top of the wall discs, rho the salt's mass per area in the inter
   slip   where that parabola reaches u = 0, below the wall discs' top (m; > 0: the salt slips)
 
   python3 bench/salt_film.py [--lmp build/lmp] [--work out/salt_film] [--json FILE]
-        [--cases NAME,...] [--seconds 60]
+        [--case NAME:H:key=value,...] [--seconds 60] [--W 400]
+
+  (case keys: the deck's variables, and rmin, rmax, seed of the pack)
 """
 import argparse
 import json
@@ -106,7 +108,7 @@ def analyse(text, profile, h, rmax=15.625):
                 eta=-rho * gs / (2 * c) / eta, mean=last["v_vx"] / (2.0 / 3.0 * us_uni))
 
 
-def run_case(lmp, work, name, pack, seconds, **var):
+def run_case(lmp, work, name, pack, seconds, rmax=15.625, **var):
     wdir = work / name
     wdir.mkdir(parents=True, exist_ok=True)
     h = var.get("h", 28)
@@ -119,7 +121,7 @@ def run_case(lmp, work, name, pack, seconds, **var):
         cmd += ["-var", k, str(v)]
     subprocess.run(cmd, cwd=wdir, check=True, stdout=subprocess.DEVNULL)
     text = (wdir / "log.lammps").read_text()
-    return analyse(text, wdir / "film_profile.txt", h, float(var.get("rmax", 15.625)))
+    return analyse(text, wdir / "film_profile.txt", h, rmax)
 
 
 def main():
@@ -141,10 +143,11 @@ def main():
         var = dict(item.split("=") for item in kv.split(",") if item)
         rmin = float(var.pop("rmin", 6.25))
         rmax = float(var.pop("rmax", 15.625))
-        pack = make_pack(lmp, work / "packs", args.W, float(H), rmin, rmax)
+        seed = int(var.pop("seed", 7))
+        pack = make_pack(lmp, work / "packs", args.W, float(H), rmin, rmax, seed=seed)
         if "h" in var:
             var["h"] = float(var["h"])
-        r = run_case(lmp, work, name, pack, args.seconds, **var)
+        r = run_case(lmp, work, name, pack, args.seconds, rmax, **var)
         results[name] = r
         print(f"{name}: y_cm {r['ycm']:.1f} m, H {r['H']:.1f} m: u_s/ana {r['ratio']:.4f}, slip "
               f"length {r['slip']:.2f} m (uniform layer: u_s/ana {r['ratio_uniform']:.4f}, mean/ana "

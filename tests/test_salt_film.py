@@ -28,7 +28,7 @@ import re
 import numpy as np
 import pytest
 
-from lmprun import ROOT, check_ok, run_lmp
+from lmprun import ROOT, assert_error, check_ok, run_lmp
 
 FILM_IN = (ROOT / "bench" / "salt_film.in").read_text()
 PACK_IN = (ROOT / "tools" / "pack.in").read_text()
@@ -114,3 +114,21 @@ def test_salt_stays_out_of_a_wall_line_without_core(film):
     f = film("fine", 190, kn_wall=0, extra="fill 8")
     # the lowest salt disc centre lies above the line's top (y = 0): it does not sink in
     assert f["ybot"] > 0.0, f"a salt disc centre at y = {f['ybot']:.2f} m, in the wall line"
+
+
+@pytest.mark.parametrize("variant, refused", [("kn 0", True), ("kn 0, fill 8", False),
+                                              ("kn 1e7", False)])
+def test_a_fluid_boundary_pair_without_core_needs_the_fill(tmp_path, variant, refused):
+    """A fluid held by a boundary only through the mirrored pressure (kn 0 on the fluid-wall
+    pair, no fill) sinks into a line of wall discs and slips on it (docs/validation.md 4.4): the
+    pair style refuses that, naming the types; a core (kn > 0) or the fill is accepted"""
+    from test_timestep import deck
+    kn = "1e7" if variant == "kn 1e7" else "0"
+    style = "saltdem/viscous fill 8" if "fill" in variant else "saltdem/viscous"
+    coeffs = ["* * 5e8 0 fluid 28 1e8", "3 3 5e8 5e9 contact 0.5",
+              f"1 3 5e8 {kn} fluid 28 1e8", f"2 3 5e8 {kn} fluid 28 1e8"]
+    run = run_lmp(deck(style, coeffs, step="timestep 1e-3", nrun=5), tmp_path)
+    if refused:
+        assert_error(run, "fluid type 1 meets boundary type 3 with kn 0", "fill 8")
+    else:
+        check_ok(run)

@@ -801,6 +801,17 @@ void PairSaltdemViscous::derive(int i, int j)
 double PairSaltdemViscous::init_one(int i, int j)
 {
   const double cut = PairSaltdem::init_one(i, j);
+  // a fluid that a boundary holds by its mirrored pressure alone sinks into a line of wall
+  // discs and slips on it (docs/validation.md 4.4: 4 m deep, slip length 14 m): refused
+  const auto &p = params[i][j];
+  if (p.mode == SaltDEM::VISCOUS_FLUID && p.kn == 0.0 && isfluid[i] != isfluid[j] &&
+      fill_max <= 1.0)
+    error->all(FLERR,
+               "Pair style {}: fluid type {} meets boundary type {} with kn 0: only the "
+               "boundary's mirrored pressure would hold the fluid, and a line of wall discs "
+               "lets it in (no no-slip base); give the pair an elastic core (kn > 0, e.g. "
+               "the boundary's kn_wall) or the pair style keyword 'fill 8'",
+               name, isfluid[i] ? i : j, isfluid[i] ? j : i);
   const double e = eta[i][j];
   if (setflag[i][j] && i < (int) eta_checked.size() && j < (int) eta_checked[i].size() &&
       (eta_checked[i][j] != e || calibration_checked != calibration)) {

@@ -126,3 +126,28 @@ def test_text_summary_and_logs(bench):
 
 def res_cores(out):
     return json.loads((out / "results.json").read_text())["machine"]["cores"]
+
+
+def test_pair_cost_reports_every_style_per_interacting_pair(tmp_path):
+    """bench/pair_cost.py on a tiny pack: every style's timed run, its interacting pairs (the
+    granular styles' contacts about 2-4 per disc in a settled pack, the salt's kernel about 20),
+    a finite cost per pair and the ratio to stock; no timings asserted."""
+    js = tmp_path / "r.json"
+    p = subprocess.run(["/usr/bin/python3", str(ROOT / "bench" / "pair_cost.py"), "--lmp", lmp_path(),
+                        "--work", str(tmp_path), "--W", "300", "--H", "150", "--nsteps", "20",
+                        "--json", str(js)], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
+    res = json.loads(js.read_text())
+    assert list(res) == ["hooke", "cohesive", "viscous", "viscous2"]
+    atoms = {r["atoms"] for r in res.values()}
+    assert len(atoms) == 1 and atoms.pop() > 50
+    for name, r in res.items():
+        assert r["steps"] == 20
+        assert math.isfinite(r["ns_per_pair"]) and r["ns_per_pair"] > 0, (name, r)
+        assert 0 < r["pair_s"] <= r["loop_s"]
+        lo, hi = (8, 40) if name.startswith("viscous") else (1.5, 5)
+        assert lo < r["pairs_per_atom"] < hi, (name, r["pairs_per_atom"])
+    assert res["hooke"]["vs_stock"] == pytest.approx(1.0)
+    # the same pack: both granular styles see the same contacts
+    assert res["cohesive"]["pairs"] == pytest.approx(res["hooke"]["pairs"], rel=0.05)
+    assert "ns/pair" in p.stdout

@@ -805,7 +805,7 @@ double PairSaltdemViscous::init_one(int i, int j)
   // discs and slips on it (docs/validation.md 4.4: 4 m deep, slip length 14 m): refused
   const auto &p = params[i][j];
   if (p.mode == SaltDEM::VISCOUS_FLUID && p.kn == 0.0 && isfluid[i] != isfluid[j] &&
-      fill_max <= 1.0)
+      fill_max <= 1.0 && !fluid_in_other_substyle(isfluid[i] ? j : i))
     error->all(FLERR,
                "Pair style {}: fluid type {} meets boundary type {} with kn 0: only the "
                "boundary's mirrored pressure would hold the fluid, and a line of wall discs "
@@ -822,6 +822,21 @@ double PairSaltdemViscous::init_one(int i, int j)
                       eta_checked[i][j], e);
   }
   return cut;
+}
+
+/* whether type t is a fluid (its own pair FLUID with K > 0) of another saltdem/viscous
+   sub-style of pair hybrid: two salts of two sub-styles meet as fluids, not at a wall */
+
+bool PairSaltdemViscous::fluid_in_other_substyle(int t) const
+{
+  for (int n = 1; n <= 64; n++) {
+    auto *s = dynamic_cast<PairSaltdemViscous *>(force->pair_match(name, 0, n));
+    if (!s) break;
+    if (s != this && s->allocated && s->setflag[t][t] &&
+        s->params[t][t].mode == SaltDEM::VISCOUS_FLUID && s->params[t][t].K > 0.0)
+      return true;
+  }
+  return false;
 }
 
 /* the viscosities and calibration of the last time step check */

@@ -63,7 +63,7 @@ def parse_args(argv=None):
     p.add_argument("--nlayer", type=int, default=5, help="strips stacked (scene height)")
     p.add_argument("--salt", type=float, default=None, help="salt thickness (m; default 1000)")
     p.add_argument("--cover", type=float, default=None, help="cover thickness (m; default 1750)")
-    p.add_argument("--nsettle", type=int, default=3000,
+    p.add_argument("--nsettle", type=int, default=10000,
                    help="untimed settling steps before the timed runs")
     p.add_argument("--nwarm", type=int, default=500, help="untimed steps of each style first")
     p.add_argument("--nsteps", type=int, default=1000, help="timed steps per style")

@@ -40,6 +40,7 @@
 #include "neigh_list.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -304,13 +305,8 @@ void PairSaltdemViscous::init_style()
   // hybrid (N > 1), the same for the same deck after read_restart
   fix_density = nullptr;
   if (any_fluid) {
-    int nth = 1;
-    if (force->pair != this)
-      for (int n = 1; n <= 64; n++)
-        if (force->pair_match(name, 0, n) == this) {
-          nth = n;
-          break;
-        }
+    const auto subs = substyles();
+    const int nth = 1 + (int) (std::find(subs.begin(), subs.end(), this) - subs.begin());
     density_id = (nth == 1) ? "SALTDEM_DENSITY" : fmt::format("SALTDEM_DENSITY_{}", nth);
     Fix *f = modify->get_fix_by_id(density_id);
     if (!f) f = modify->add_fix(fmt::format("{} all SALTDEM_DENSITY", density_id));
@@ -824,18 +820,30 @@ double PairSaltdemViscous::init_one(int i, int j)
   return cut;
 }
 
+/* the saltdem/viscous styles of the run in order: this one alone, or the sub-styles of this
+   name under pair hybrid (pair_match ignores the index when the pair is not hybrid) */
+
+std::vector<PairSaltdemViscous *> PairSaltdemViscous::substyles() const
+{
+  if (force->pair == this) return {const_cast<PairSaltdemViscous *>(this)};
+  std::vector<PairSaltdemViscous *> out;
+  for (int n = 1; n <= 64; n++) {
+    auto *s = dynamic_cast<PairSaltdemViscous *>(force->pair_match(name, 0, n));
+    if (!s) break;
+    out.push_back(s);
+  }
+  return out;
+}
+
 /* whether type t is a fluid (its own pair FLUID with K > 0) of another saltdem/viscous
    sub-style of pair hybrid: two salts of two sub-styles meet as fluids, not at a wall */
 
 bool PairSaltdemViscous::fluid_in_other_substyle(int t) const
 {
-  for (int n = 1; n <= 64; n++) {
-    auto *s = dynamic_cast<PairSaltdemViscous *>(force->pair_match(name, 0, n));
-    if (!s) break;
+  for (auto *s : substyles())
     if (s != this && s->allocated && s->setflag[t][t] &&
         s->params[t][t].mode == SaltDEM::VISCOUS_FLUID && s->params[t][t].K > 0.0)
       return true;
-  }
   return false;
 }
 

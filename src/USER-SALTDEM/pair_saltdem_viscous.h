@@ -141,6 +141,7 @@ class PairSaltdemViscous : public PairSaltdem {
   int moment_slots(int *slot) const;    // the slots of moment that the reverse comm sends
   template <int DIM> void kernel_moments();
   void grow_arrays();    // vol, pmat, moment (and scratch) for the owned and ghost atoms
+  std::vector<PairSaltdemViscous *> substyles() const;    // this, or its hybrid siblings
   bool fluid_in_other_substyle(int) const;
   void allocate_params(int) override;
   void *pair_params(int i, int j) override;

@@ -17,7 +17,11 @@ the thickness of a layer of that density on the base band's top, u the salt's me
 (vcm), so that flux / lubrication = u / (rho g sin H^2 / (3 eta)).
 
   python3 bench/salt_under_load.py [--lmp build/lmp] [--work out/salt_under_load]
-        [--cases slope,couette] [--time 1500] [--json FILE]
+        [--cases slope,couette] [--time 1500] [--extra 'PAIR STYLE KEYWORDS']
+        [--couette P:V,...]
+
+--extra: keywords for pair_style saltdem/viscous (e.g. 'noslip surface fill 8');
+--couette: the lid pressures (Pa) and speeds (m/s) to run (default: all nine).
 
 Each case is a few hundred discs (262 for the slope, 292 for Couette, 400 m wide); a slope run
 of 1500 s is 214,000 steps, about 2-3 CPU minutes.  Writes WORK/results.json.
@@ -102,13 +106,13 @@ def interior_density(block, lo, hi):
     return sum(vals) / len(vals)
 
 
-def slope_case(lmp, work, g, seconds, label):
+def slope_case(lmp, work, g, seconds, label, extra=""):
     pack = make_pack(lmp, work, 400, 232)
     nsteps = int(round(seconds / DT))
     nthermo = 5000
     text = run_deck(lmp, "salt_slope.in", work / label,
                     dict(pack=pack, dt=DT, nsteps=nsteps, nthermo=nthermo, g=g, slope=SLOPE,
-                         eta=ETA, h=H_SALT))
+                         eta=ETA, h=H_SALT, extra=extra))
     m = marker(text, "SLOPE")
     rows = thermo(text, "Step")
     blocks = read_chunks(work / label / "slope_profile.txt")
@@ -121,12 +125,12 @@ def slope_case(lmp, work, g, seconds, label):
     return dict(g=g, H=H, rho=rho, u_lub=u_lub, series=series)
 
 
-def couette_case(lmp, work, P, V, seconds, label):
+def couette_case(lmp, work, P, V, seconds, label, extra=""):
     """eta_eff / eta per thermo block: the lid's stress over the interior shear rate."""
     pack = make_pack(lmp, work, 400, 263)
     text = run_deck(lmp, "salt_couette.in", work / label,
                     dict(pack=pack, dt=DT, P=P, V=V, nload=3000, nsteps=int(round(seconds / DT)),
-                         nthermo=5000, eta=ETA, h=H_SALT))
+                         nthermo=5000, eta=ETA, h=H_SALT, extra=extra))
     m = marker(text, "COUETTE")
     rows = [r for r in thermo(text, "Step") if r["f_avt"] != 0.0]
     blocks = read_chunks(work / label / "couette_profile.txt")
@@ -153,27 +157,30 @@ def main():
     ap.add_argument("--work", default=str(ROOT / "out" / "salt_under_load"))
     ap.add_argument("--cases", default="slope,couette")
     ap.add_argument("--time", type=float, default=1500.0)
+    ap.add_argument("--extra", default="", help="pair_style saltdem/viscous keywords")
+    ap.add_argument("--couette", default="", help="P:V,... (default: P 1e5, 2e6, 2e7 x V 0.01, 0.04, 0.1)")
     args = ap.parse_args()
+    lids = ([tuple(float(v) for v in c.split(":")) for c in args.couette.split(",")] if args.couette
+            else [(P, V) for P in (1e5, 2e6, 2e7) for V in (0.01, 0.04, 0.1)])
     work = pathlib.Path(args.work).resolve()
     work.mkdir(parents=True, exist_ok=True)
     results = {}
     if "slope" in args.cases:
         for g, label in ((9.81, "slope_g1"), (0.981, "slope_g01")):
-            r = slope_case(args.lmp, work, g, args.time, label)
+            r = slope_case(args.lmp, work, g, args.time, label, args.extra)
             results[label] = r
             s = r["series"]
             print(f"{label}: H {r['H']:.1f} m, rho {r['rho']:.0f} kg/m^2, flux / lubrication "
                   + ", ".join(f"{at(s, t):.3f} ({t:.0f} s)" for t in (35, 290, 700, 1050, args.time)))
     if "couette" in args.cases:
-        for P in (1e5, 2e6, 2e7):
-            for V in (0.01, 0.04, 0.1):
-                label = f"couette_P{P:g}_V{V:g}"
-                r = couette_case(args.lmp, work, P, V, min(args.time, 420.0), label)
-                results[label] = r
-                s = r["series"]
-                late = [v for t, v in s if t >= 0.5 * s[-1][0]]
-                print(f"{label}: eta_eff / eta {sum(late) / len(late):.3f} (second half; "
-                      f"{s[0][1]:.3f} at {s[0][0]:.0f} s, {s[-1][1]:.3f} at {s[-1][0]:.0f} s)")
+        for P, V in lids:
+            label = f"couette_P{P:g}_V{V:g}"
+            r = couette_case(args.lmp, work, P, V, min(args.time, 420.0), label, args.extra)
+            results[label] = r
+            s = r["series"]
+            late = [v for t, v in s if t >= 0.5 * s[-1][0]]
+            print(f"{label}: eta_eff / eta {sum(late) / len(late):.3f} (second half; "
+                  f"{s[0][1]:.3f} at {s[0][0]:.0f} s, {s[-1][1]:.3f} at {s[-1][0]:.0f} s)", flush=True)
     (work / "results.json").write_text(json.dumps(results, indent=1))
 
 

@@ -271,7 +271,7 @@ def fluid_deck(c, dt_settle, x, limit):
     h = c["h"]
     if c["law"] == "fluid":
         # as examples/scene/laws.in: the walls are boundary particles (3 3 none), not fluid
-        pair = f"""pair_style      hybrid saltdem/viscous
+        pair = f"""pair_style      hybrid saltdem/viscous {c.get('extra', '')}
 pair_coeff      * * none
 pair_coeff      2 2 saltdem/viscous {ETA} 0 fluid {h} {c['K']}
 pair_coeff      2 3 saltdem/viscous {ETA} {c['kn_wall']} fluid {h} {c['K']}
@@ -753,6 +753,12 @@ def component_cases():
             # core, which the load presses into the walls, far below both
             ("fluid_P20_S200", {"P": 2e7, "tload": 6.0, "nsettle": 10000, "S": 200}),
             ("fluid_P20_S2000", {"P": 2e7, "tload": 20.0, "nsettle": 10000, "S": 2000}),
+            # the no-slip plane at the wall discs' surfaces (the wall pairs' viscosity up to
+            # 1 + NOSLIP_MAX times stronger), and with the boundary fill (up to 8x more)
+            ("fluid_noslip", {"extra": "noslip surface"}),
+            ("fluid_P20_noslip", {"P": 2e7, "tload": 2.0, "nsettle": 10000,
+                                  "extra": "noslip surface"}),
+            ("fluid_noslip_fill8", {"extra": "noslip surface fill 8"}),
     ]:
         cases.append(dict(base, name=name, law="fluid", pack_spec=salt_pack, **over))
     # the quick preset's discs (uniform 25-62.5 m) and inertia (S 4)

@@ -1052,9 +1052,9 @@ def test_restart_names_its_fields_and_version(lmp, tmp_path, style):
         assert derived not in raw
     at = at[style]
     version = struct.unpack("i", raw[at + 8:at + 12])[0]
-    # saltdem/viscous: 2 added the setting fill, 3 substeps (it still reads 1 and 2)
+    # saltdem/viscous: 2 added the setting fill, 3 substeps, 4 noslip (it still reads 1 to 3)
     current, reads = {"saltdem/cohesive": (1, "reads layout 1"),
-                      "saltdem/viscous": (3, "reads layouts 1 to 3")}[style]
+                      "saltdem/viscous": (4, "reads layouts 1 to 4")}[style]
     assert version == current
     (tmp_path / "r.restart").write_bytes(raw[:at + 8] + struct.pack("i", 7) + raw[at + 12:])
     assert_error(lmp("read_restart r.restart\n"), f"Pair style {style}", "layout version 7",

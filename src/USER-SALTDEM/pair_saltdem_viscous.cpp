@@ -55,13 +55,13 @@ PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     pmat(nullptr), moment(nullptr), fill(nullptr), mdens(nullptr), scratch(nullptr),
     fix_density(nullptr), fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
     calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.8),
-    fill_max(DEFAULT_FILL_MAX), substeps(1), usub(nullptr), fsub(nullptr), ksub(nullptr),
-    fother(nullptr), comm_mode(COMM_PRESSURE), calibration_checked(DEFAULT_CALIBRATION),
-    salt_inertia(1.0)
+    fill_max(DEFAULT_FILL_MAX), substeps(1), noslip_surface(false), slip(nullptr), usub(nullptr),
+    fsub(nullptr), ksub(nullptr), fother(nullptr), comm_mode(COMM_PRESSURE),
+    calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
-  // volume, boundary fill and pressure matrix, or the sub-step velocities; the kernel sums of
-  // ghosts (newton on), or their sub-step forces
-  comm_forward = 2 + SaltDEM::NSYM;
+  // volume, boundary fill, pressure matrix and no-slip offset, or the sub-step velocities; the
+  // kernel sums of ghosts (newton on), or their sub-step forces
+  comm_forward = 2 + SaltDEM::NSYM + 3;
   comm_reverse = NMOM;
 }
 
@@ -76,6 +76,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(fill);
   memory->destroy(mdens);
   memory->destroy(scratch);
+  memory->destroy(slip);
   memory->destroy(usub);
   memory->destroy(fsub);
   memory->destroy(ksub);
@@ -143,7 +144,7 @@ double PairSaltdemViscous::fluid_K(int t) const
 }
 
 /* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C]
-   [fill F] [substeps N] */
+   [fill F] [substeps N] [noslip centre|surface] */
 
 void PairSaltdemViscous::settings(int narg, char **arg)
 {
@@ -153,6 +154,19 @@ void PairSaltdemViscous::settings(int narg, char **arg)
       utils::missing_cmd_args(FLERR, fmt::format("pair_style {} {}", name, arg[iarg]), error);
     if (strcmp(arg[iarg], "substeps") == 0) {
       substeps = parse_substeps(arg[iarg + 1]);
+      iarg += 2;
+      continue;
+    }
+    if (strcmp(arg[iarg], "noslip") == 0) {
+      if (strcmp(arg[iarg + 1], "surface") == 0)
+        noslip_surface = true;
+      else if (strcmp(arg[iarg + 1], "centre") == 0 || strcmp(arg[iarg + 1], "center") == 0)
+        noslip_surface = false;
+      else
+        error->all(FLERR,
+                   "Pair style {}: noslip '{}' is not a boundary (expected surface: the fluid "
+                   "meets a boundary disc at its surface, or centre: at its centre)",
+                   name, arg[iarg + 1]);
       iarg += 2;
       continue;
     }
@@ -182,7 +196,7 @@ void PairSaltdemViscous::settings(int narg, char **arg)
     } else
       error->all(FLERR,
                  "Pair style {}: unknown keyword '{}' (expected: correction, calibration, "
-                 "dtfactor, viscfactor, fill, substeps)",
+                 "dtfactor, viscfactor, fill, substeps, noslip)",
                  name, arg[iarg]);
     iarg += 2;
   }
@@ -320,6 +334,11 @@ void PairSaltdemViscous::init_style()
   }
   // the sub-steps move the atoms that a fix integrates, with the inertia it gives them
   integrators = find_integrators();
+  if (any_fluid && noslip_surface && comm->me == 0)
+    utils::logmesg(lmp,
+                   "Pair style {}: no-slip at the surfaces of the boundary discs (noslip "
+                   "surface: the fluid's velocity extrapolated into them)\n",
+                   name);
   PairSaltdem::init_style();
 }
 
@@ -435,6 +454,12 @@ void PairSaltdemViscous::pre_loop()
     kernel_moments<2>();
   else
     kernel_moments<3>();
+  if (noslip_surface) {
+    if (dim == 2)
+      noslip_offsets<2>();
+    else
+      noslip_offsets<3>();
+  }
 
   // a boundary particle (wall, cover) has, beside a fluid particle, the volume of the fluid it
   // stands for (pair_weights: its mass as that fluid's over the fluid's reference density);
@@ -472,13 +497,17 @@ void PairSaltdemViscous::pre_loop()
 /* the kernel sums of the owned particles of the types whose own pair is FLUID, over the FLUID
    pairs of the list, split into their fluid and their boundary partners (a partner whose own
    pair is not FLUID): the moments S = sum_j m_j w_ij d_ij d_ij and the kernel sums
-   sum_j m_j W_ij (i itself among the fluid's); with newton on the ghosts' parts go home; with
-   viscous sub-steps also the list of the FLUID pairs within 2h and their kernel factors */
+   sum_j m_j W_ij (i itself among the fluid's); with noslip surface, in the same slots of a
+   boundary particle b (whose own sums are not needed), its fluid partners' kernel sums
+   sum_f m_f W_bf in MOM_WF, sum_f m_f W_bf (x_f - x_b) in slots 0.. and sum_f m_f W_bf v_f in
+   slots NSYM.. (noslip_offsets); with newton on the ghosts' parts go home; with viscous
+   sub-steps also the list of the FLUID pairs within 2h and their kernel factors */
 
 template <int DIM> void PairSaltdemViscous::kernel_moments()
 {
   constexpr int NS = SaltDEM::NSYM;
   const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
+  const auto v = atom->v ? (const double(*)[3]) atom->v[0] : nullptr;
   const double *m = atom->rmass;
   const double *radius = atom->radius;
   const int *type = atom->type;
@@ -487,6 +516,15 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
   const int newton_pair = force->newton_pair;
   for (int i = 0; i < NMOM * (newton_pair ? nall : nlocal); i++) moment[i] = 0.0;
   const bool sub = substeps > 1;
+  const bool ext = noslip_surface;
+  // a boundary particle b's sums of a fluid partner f at d = x_f - x_b (sign: +1) or x_b - x_f
+  auto add_fluid = [&](double *Mb, int f, double mw, const double *d, double sign) {
+    Mb[MOM_WF] += mw;
+    for (int k = 0; k < DIM; k++) {
+      Mb[k] += sign * mw * d[k];
+      Mb[NS + k] += mw * v[f][k];
+    }
+  };
   subpairs.clear();
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -523,13 +561,39 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
         SaltDEM::add_moment<DIM>(mji * w, d, fi ? Mj : Mj + NS);
         Mj[fi ? MOM_WF : MOM_WB] += mji * W;
       }
+      if (ext && fi != fj) {
+        if (fj)
+          add_fluid(Mi, j, m[j] * W, d, -1.0);
+        else if (newton_pair || j < nlocal)
+          add_fluid(&moment[NMOM * j], i, m[i] * W, d, 1.0);
+      }
     }
-    if (fi)
+    if (fi || ext)
       for (int k = 0; k < NMOM; k++) moment[NMOM * i + k] += Mi[k];
   }
   if (newton_pair) {
     comm_mode = COMM_PRESSURE;
     comm->reverse_comm(this);
+  }
+}
+
+/* noslip surface: the offset v_eff - v of each owned boundary particle from its fluid
+   partners' sums (kernel_moments; SaltDEM::noslip_offset), 0 for the fluid's own particles
+   and for boundary particles without a fluid partner */
+
+template <int DIM> void PairSaltdemViscous::noslip_offsets()
+{
+  constexpr int NS = SaltDEM::NSYM;
+  const double *const *v = atom->v;
+  const double *radius = atom->radius;
+  const int *type = atom->type;
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *o = &slip[3 * i];
+    const double *M = &moment[NMOM * i];
+    if (fluidself[type[i]])
+      o[0] = o[1] = o[2] = 0.0;
+    else
+      SaltDEM::noslip_offset<DIM>(M[MOM_WF], M, M + NS, v[i], radius[i], o);
   }
 }
 
@@ -571,6 +635,35 @@ template <int DIM> void PairSaltdemViscous::viscous_substeps()
   for (auto &sp : subpairs) {
     const Weights w = pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
     sp.c *= w.vi * w.vj;
+  }
+  // noslip surface: the boundary partners' offsets (of the step's start) add a force that
+  // the sub-steps hold constant, as the other forces (its ghosts' parts go home once)
+  if (noslip_surface) {
+    for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
+    for (const auto &sp : subpairs) {
+      const int ti = type[sp.i], tj = type[sp.j];
+      if (fluidself[ti] == fluidself[tj]) continue;
+      // -c (v_i - v_j + o_i - o_j) less the plain -c (v_i - v_j); one of o_i, o_j is 0
+      const double *o = fluidself[ti] ? &slip[3 * sp.j] : &slip[3 * sp.i];
+      const double c = fluidself[ti] ? sp.c : -sp.c;
+      double fp[3] = {0.0, 0.0, 0.0};
+      for (int k = 0; k < DIM; k++) {
+        fp[k] = c * o[k];
+        fsub[3 * sp.i + k] += fp[k];
+        if (newton_pair || sp.j < nlocal) fsub[3 * sp.j + k] -= fp[k];
+      }
+      if (evflag)
+        ev_tally_xyz(sp.i, sp.j, nlocal, newton_pair, 0.0, 0.0, fp[0], fp[1], fp[2],
+                     x[sp.i][0] - x[sp.j][0], x[sp.i][1] - x[sp.j][1],
+                     (DIM == 3) ? x[sp.i][2] - x[sp.j][2] : 0.0);
+    }
+    comm_mode = COMM_SUBSTEP;
+    if (newton_pair) comm->reverse_comm(this);
+    for (int i = 0; i < nlocal; i++)
+      for (int k = 0; k < DIM; k++) {
+        f[i][k] += fsub[3 * i + k];
+        fother[3 * i + k] += fsub[3 * i + k];
+      }
   }
   const SubPair *begin = subpairs.data(), *end = begin + subpairs.size();
   for (int step = 0; step < n; step++) {
@@ -618,12 +711,15 @@ void PairSaltdemViscous::grow_arrays()
   memory->destroy(fill);
   memory->destroy(mdens);
   memory->destroy(scratch);
+  memory->destroy(slip);
   memory->destroy(usub);
   memory->destroy(fsub);
   memory->destroy(ksub);
   memory->destroy(fother);
   nmax = MAX(nmax, atom->nmax);
   memory->create(vol, nmax, "pair:vol");
+  memory->create(slip, 3 * nmax, "pair:slip");
+  for (int i = 0; i < 3 * nmax; i++) slip[i] = 0.0;
   memory->create(fill, nmax, "pair:fill");
   memory->create(mdens, nmax, "pair:mdens");
   if (substeps > 1) {
@@ -681,11 +777,13 @@ int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, in
       for (int c = 0; c < 3; c++) buf[k++] = usub[3 * list[i] + c];
     return k;
   }
+  const int nd = noslip_surface ? domain->dimension : 0;
   for (int i = 0; i < n; i++) {
     const int j = list[i];
     buf[k++] = vol[j];
     buf[k++] = fill[j];
     for (int c = 0; c < ns; c++) buf[k++] = pmat[SaltDEM::NSYM * j + c];
+    for (int c = 0; c < nd; c++) buf[k++] = slip[3 * j + c];
   }
   return k;
 }
@@ -699,10 +797,12 @@ void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
       for (int c = 0; c < 3; c++) usub[3 * i + c] = buf[k++];
     return;
   }
+  const int nd = noslip_surface ? domain->dimension : 0;
   for (int i = first; i < first + n; i++) {
     vol[i] = buf[k++];
     fill[i] = buf[k++];
     for (int c = 0; c < ns; c++) pmat[SaltDEM::NSYM * i + c] = buf[k++];
+    for (int c = 0; c < nd; c++) slip[3 * i + c] = buf[k++];
   }
 }
 
@@ -752,7 +852,7 @@ void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
 double PairSaltdemViscous::memory_usage()
 {
   return PairSaltdem::memory_usage() +
-      (2.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0)) * nmax *
+      (5.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0)) * nmax *
       sizeof(double) +
       (double) subpairs.capacity() * sizeof(SubPair);
 }
@@ -798,15 +898,16 @@ double PairSaltdemViscous::init_one(int i, int j)
 {
   const double cut = PairSaltdem::init_one(i, j);
   // a fluid that a boundary holds by its mirrored pressure alone sinks into a line of wall
-  // discs and slips on it (docs/validation.md 4.4: 4 m deep, slip length 14 m): refused
+  // discs and slips on it (docs/validation.md 4.4: 4 m deep, slip length 14 m), and with the
+  // fill it still leaks through in time (a disc after 1300 s of a 190 m film): refused
   const auto &p = params[i][j];
   if (p.mode == SaltDEM::VISCOUS_FLUID && p.kn == 0.0 && isfluid[i] != isfluid[j] &&
-      fill_max <= 1.0 && !fluid_in_other_substyle(isfluid[i] ? j : i))
+      !fluid_in_other_substyle(isfluid[i] ? j : i))
     error->all(FLERR,
                "Pair style {}: fluid type {} meets boundary type {} with kn 0: only the "
                "boundary's mirrored pressure would hold the fluid, and a line of wall discs "
-               "lets it in (no no-slip base); give the pair an elastic core (kn > 0, e.g. "
-               "the boundary's kn_wall) or the pair style keyword 'fill 8'",
+               "lets it in (no no-slip base; with 'fill' too, in time); give the pair an "
+               "elastic core (kn > 0, e.g. the boundary's kn_wall)",
                name, isfluid[i] ? i : j, isfluid[i] ? j : i);
   const double e = eta[i][j];
   if (setflag[i][j] && i < (int) eta_checked.size() && j < (int) eta_checked[i].size() &&
@@ -932,10 +1033,12 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
 
 std::vector<std::string> PairSaltdemViscous::setting_names() const
 {
-  // (the settings of the layout being read: 1 before fill, 2 before substeps)
+  // (the settings of the layout being read: 1 before fill, 2 before substeps, 3 before noslip)
   if (layout_read == 1) return {"calibration", "correction", "dtfactor", "viscfactor"};
   if (layout_read == 2) return {"calibration", "correction", "dtfactor", "viscfactor", "fill"};
-  return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps"};
+  if (layout_read == 3)
+    return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps"};
+  return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps", "noslip"};
 }
 
 void PairSaltdemViscous::pack_settings(double *v) const
@@ -946,6 +1049,7 @@ void PairSaltdemViscous::pack_settings(double *v) const
   v[3] = viscfactor;
   v[4] = fill_max;
   v[5] = substeps;
+  v[6] = noslip_surface ? 1.0 : 0.0;
 }
 
 void PairSaltdemViscous::unpack_settings(const double *v)
@@ -956,6 +1060,7 @@ void PairSaltdemViscous::unpack_settings(const double *v)
   viscfactor = v[3];
   fill_max = (layout_read == 1) ? DEFAULT_FILL_MAX : v[4];
   substeps = (layout_read == 1 || layout_read == 2) ? 1 : (int) v[5];
+  noslip_surface = (layout_read >= 4) && v[6] != 0.0;
 }
 
 std::vector<std::string> PairSaltdemViscous::coeff_names() const

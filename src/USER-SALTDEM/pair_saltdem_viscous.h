@@ -129,7 +129,10 @@ class PairSaltdemViscous : public PairSaltdem {
   double viscfactor;    // safety factor on the viscous stable dt
   double fill_max;      // FLUID: the largest boundary fill (1: boundaries count as themselves)
   static constexpr double DEFAULT_FILL_MAX = 1.0;    // (off: see the pair's doc page)
-  int substeps;                     // FLUID: viscous sub-steps per time step (1: in the force pass)
+  int substeps;           // FLUID: viscous sub-steps per time step (1: in the force pass)
+  bool noslip_surface;    // FLUID: boundary partners extrapolate the fluid's velocity (noslip)
+  double *slip;           // noslip surface: each boundary particle's offset v_eff - v (3 per
+                          // atom, owned and ghost; 0 for fluid particles), SaltDEM::noslip_offset
   std::vector<SubPair> subpairs;    // substeps > 1: the FLUID pairs within 2h (kernel_moments)
   double *usub, *fsub;              // substeps > 1: sub-step velocities and forces (3 per atom)
   double *ksub, *fother;      // substeps > 1: dt/N over the inertial mass; the step's other forces
@@ -140,6 +143,7 @@ class PairSaltdemViscous : public PairSaltdem {
   template <int DIM> void kernel_density(double *out, double *interior);
   int moment_slots(int *slot) const;    // the slots of moment that the reverse comm sends
   template <int DIM> void kernel_moments();
+  template <int DIM> void noslip_offsets();
   void grow_arrays();    // vol, pmat, moment (and scratch) for the owned and ghost atoms
   std::vector<PairSaltdemViscous *> substyles() const;    // this, or its hybrid siblings
   bool fluid_in_other_substyle(int) const;
@@ -151,8 +155,9 @@ class PairSaltdemViscous : public PairSaltdem {
   double range(int i, int j) const override;
   double range_abs(int i, int j) const override;
   void pair_limit(int, int, double, double, bool, double &, std::string &) override;
-  // 2: the setting fill, 3: substeps; layouts 1 and 2 are read (fill 1, substeps 1)
-  int restart_version() const override { return 3; }
+  // 2: the setting fill, 3: substeps, 4: noslip; layouts 1-3 are read (fill 1, substeps 1,
+  // noslip centre)
+  int restart_version() const override { return 4; }
   int oldest_restart_version() const override { return 1; }
   std::vector<std::string> setting_names() const override;
   void pack_settings(double *) const override;

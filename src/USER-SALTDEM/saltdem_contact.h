@@ -542,18 +542,47 @@ namespace SaltDEM {
                             : 105.0 / (16.0 * M_PI * h * h * h * h * h);
   }
 
+  /* FLUID, noslip surface: the velocity that a boundary particle (wall or cover disc of
+   radius R and velocity vb) shows its fluid partners is the fluid's, extrapolated linearly
+   through the particle's own surface, where the two move together (Morris et al. 1997, J
+   Comput Phys 136:214; Adami et al. 2012, J Comput Phys 231:7057, with the wall's depth):
+     v_eff = vb - a (u - vb),  a = R / dist,
+   u = ws^-1 sum_f mu_f W_f v_f the fluid's kernel average about the particle, at its kernel
+   centroid c / ws (c = sum_f mu_f W_f (x_f - x_b)), which lies dist = |c| / ws - R beyond the
+   surface along c.  A linear shear flow then sees a continuous velocity across the surface;
+   a plain static particle holds the fluid still at its centre, R below the surface
+   (docs/validation.md 4.4).  a is capped at NOSLIP_MAX (the fluid crowding the surface: a
+   mirror velocity larger than the fluid's own); with no side to the fluid (dist <= 0: a disc
+   inside the fluid) a ramps to 0.  Writes the offset o = v_eff - vb. */
+  constexpr double NOSLIP_MAX = 1.0;
+  template <int DIM>
+  inline void noslip_offset(double ws, const double *c, const double *u, const double *vb, double R,
+                            double *o)
+  {
+    for (int k = 0; k < 3; k++) o[k] = 0.0;
+    if (!(ws > 0.0) || !(R > 0.0)) return;
+    double c2 = 0.0;
+    for (int k = 0; k < DIM; k++) c2 += c[k] * c[k];
+    const double dist = std::sqrt(c2) / ws - R;
+    if (!(dist > 0.0)) return;
+    const double a = (dist * NOSLIP_MAX >= R) ? R / dist : NOSLIP_MAX * NOSLIP_MAX * dist / R;
+    for (int k = 0; k < DIM; k++) o[k] = -a * (u[k] / ws - vb[k]);
+  }
+
   /* FLUID: the Morris viscosity and the SPH pressure between particles of
    volumes voli, volj (m/rho) at d = x_i - x_j, r = |d|, relative velocity
    vr = v_i - v_j, radii summing to radsum; pm: the SPH pressure pair matrix
-   mu_ij A_i + mu_ji A_j (pressure_pair).  No torque.  divw:
-   v_ij . grad_i W_ij, the pair's term of the continuity equation
-   d rho_i/dt = sum_j mu_ij v_ij . grad_i W_ij.  Written on d rather than the
-   unit normal: no division unless an elastic core acts.  Returns true while
-   the discs touch. */
+   mu_ij A_i + mu_ji A_j (pressure_pair); ov: what the viscosity adds to vr, the
+   boundary partner's no-slip offset (o_i - o_j, noslip_offset; zeros for a plain
+   pair).  No torque.  divw: v_ij . grad_i W_ij (of the particles' own velocities), the
+   pair's term of the continuity equation d rho_i/dt = sum_j mu_ij v_ij . grad_i W_ij.
+   Written on d rather than the unit normal: no division unless an elastic core acts.
+   Returns true while the discs touch. */
   template <int DIM = 3, int EVFLAG = 1>
   inline bool viscous_fluid_force(const ViscousParams &p, const double *d, const double *vr,
-                                  double r, double radsum, double voli, double volj,
-                                  const double *pm, double *f, double &evdwl, double &divw)
+                                  const double *ov, double r, double radsum, double voli,
+                                  double volj, const double *pm, double *f, double &evdwl,
+                                  double &divw)
   {
     const double delta = radsum - r;
     const bool touching = delta > 0.0;
@@ -575,7 +604,7 @@ namespace SaltDEM {
     }
     double vd = 0.0;
     for (int k = 0; k < DIM; k++) {
-      f[k] = cws3 * pd[k] + a * d[k] - g * vr[k];
+      f[k] = cws3 * pd[k] + a * d[k] - g * (vr[k] + ov[k]);
       vd += vr[k] * d[k];
     }
     divw = -cws3 * vd;

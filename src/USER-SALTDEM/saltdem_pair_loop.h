@@ -269,9 +269,16 @@ int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, 
     double pm[SaltDEM::NSYM];
     SaltDEM::pressure_pair<DIM>(isfluid[itype], isfluid[jtype], w.mi, w.mj,
                                 &pmat[SaltDEM::NSYM * i], &pmat[SaltDEM::NSYM * j], pm);
+    // noslip surface: a boundary partner shows the fluid its extrapolated velocity
+    double ov[3] = {0.0, 0.0, 0.0};
+    if (noslip_surface && fluidself[itype] != fluidself[jtype]) {
+      const double *o = fluidself[itype] ? &slip[3 * j] : &slip[3 * i];
+      const double sign = fluidself[itype] ? -1.0 : 1.0;
+      for (int k = 0; k < DIM; k++) ov[k] = sign * o[k];
+    }
     double divw = 0.0;
     const bool touch = SaltDEM::viscous_fluid_force<DIM, EVFLAG>(
-        p, d, vr, r, a.radius[i] + a.radius[j], w.vi, w.vj, pm, f, evdwl, divw);
+        p, d, vr, ov, r, a.radius[i] + a.radius[j], w.vi, w.vj, pm, f, evdwl, divw);
     q[0] = w.mj * divw;
     q[1] = w.mi * divw;
     return touch ? LAW_TOUCH : 0;

@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 
 from lmprun import ROOT, check_ok, run_lmp
+from test_salt_film import last_block, marker
 
 FILM_IN = (ROOT / "bench" / "salt_film.in").read_text()
 PACK_IN = (ROOT / "tools" / "pack.in").read_text()
@@ -40,23 +41,9 @@ def pack(tmp_path_factory):
 def surface_ratio(run, workdir, rmax=15.625):
     """u_s / analytic as bench/salt_film.py measures it (the mean of the top 2 rmax against
     g sin (M/W) y_cm / eta, y_cm the profile's centre of mass above the wall discs' top)."""
-    blocks, rows = [], None
-    for line in (workdir / "film_profile.txt").read_text().splitlines():
-        s = line.split()
-        if not s or line.startswith("#"):
-            continue
-        if len(s) == 3:
-            rows = []
-            blocks.append(rows)
-        else:
-            rows.append([float(v) for v in s])
-    prof = np.array(blocks[-1])
+    prof = last_block(workdir / "film_profile.txt")
     y, n, vx, dens = prof[:, 1], prof[:, 2], prof[:, 3], prof[:, 4]
-    m = {}
-    for line in run.out.splitlines():
-        if line.startswith("FILM "):
-            s = line.split()
-            m = {s[k]: float(s[k + 1]) for k in range(1, len(s) - 1, 2)}
+    m = marker(run.out, "FILM")
     ycm = (dens * y).sum() / dens.sum()
     us_ana = m["g"] * m["slope"] * m["M"] / m["W"] * ycm / ETA
     ytop = run.thermo()["v_ytop"][-1]

@@ -704,7 +704,7 @@ template <int DIM> void PairSaltdemViscous::viscous_substeps()
 void PairSaltdemViscous::grow_arrays()
 {
   // (sub-steps may be switched on between runs: saltdem/timestep ... substeps N)
-  if (atom->nmax <= nmax && (substeps < 2 || usub)) return;
+  if (atom->nmax <= nmax && (substeps < 2 || usub) && (!noslip_surface || slip)) return;
   memory->destroy(vol);
   memory->destroy(pmat);
   memory->destroy(moment);
@@ -718,8 +718,10 @@ void PairSaltdemViscous::grow_arrays()
   memory->destroy(fother);
   nmax = MAX(nmax, atom->nmax);
   memory->create(vol, nmax, "pair:vol");
-  memory->create(slip, 3 * nmax, "pair:slip");
-  for (int i = 0; i < 3 * nmax; i++) slip[i] = 0.0;
+  if (noslip_surface) {
+    memory->create(slip, 3 * nmax, "pair:slip");
+    for (int i = 0; i < 3 * nmax; i++) slip[i] = 0.0;
+  }
   memory->create(fill, nmax, "pair:fill");
   memory->create(mdens, nmax, "pair:mdens");
   if (substeps > 1) {
@@ -852,8 +854,9 @@ void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
 double PairSaltdemViscous::memory_usage()
 {
   return PairSaltdem::memory_usage() +
-      (5.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0)) * nmax *
-      sizeof(double) +
+      (2.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0) +
+       (slip ? 3.0 : 0.0)) *
+      nmax * sizeof(double) +
       (double) subpairs.capacity() * sizeof(SubPair);
 }
 

@@ -131,8 +131,9 @@ class PairSaltdemViscous : public PairSaltdem {
   static constexpr double DEFAULT_FILL_MAX = 1.0;    // (off: see the pair's doc page)
   int substeps;           // FLUID: viscous sub-steps per time step (1: in the force pass)
   bool noslip_surface;    // FLUID: boundary partners extrapolate the fluid's velocity (noslip)
-  double *slip;           // noslip surface: each boundary particle's offset v_eff - v (3 per
-                          // atom, owned and ghost; 0 for fluid particles), SaltDEM::noslip_offset
+  // noslip surface (else not allocated): each boundary particle's offset v_eff - v (3 per
+  // atom, owned and ghost; 0 for fluid particles), SaltDEM::noslip_offset
+  double *slip;
   std::vector<SubPair> subpairs;    // substeps > 1: the FLUID pairs within 2h (kernel_moments)
   double *usub, *fsub;              // substeps > 1: sub-step velocities and forces (3 per atom)
   double *ksub, *fother;      // substeps > 1: dt/N over the inertial mass; the step's other forces

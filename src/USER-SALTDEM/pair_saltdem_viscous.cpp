@@ -641,14 +641,11 @@ template <int DIM> void PairSaltdemViscous::viscous_substeps()
   if (noslip_surface) {
     for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
     for (const auto &sp : subpairs) {
-      const int ti = type[sp.i], tj = type[sp.j];
-      if (fluidself[ti] == fluidself[tj]) continue;
-      // -c (v_i - v_j + o_i - o_j) less the plain -c (v_i - v_j); one of o_i, o_j is 0
-      const double *o = fluidself[ti] ? &slip[3 * sp.j] : &slip[3 * sp.i];
-      const double c = fluidself[ti] ? sp.c : -sp.c;
-      double fp[3] = {0.0, 0.0, 0.0};
+      // -c (v_i - v_j + o_i - o_j) less the plain -c (v_i - v_j)
+      double ov[3] = {0.0, 0.0, 0.0}, fp[3] = {0.0, 0.0, 0.0};
+      if (!noslip_pair<DIM>(sp.i, sp.j, type[sp.i], type[sp.j], ov)) continue;
       for (int k = 0; k < DIM; k++) {
-        fp[k] = c * o[k];
+        fp[k] = -sp.c * ov[k];
         fsub[3 * sp.i + k] += fp[k];
         if (newton_pair || sp.j < nlocal) fsub[3 * sp.j + k] -= fp[k];
       }

@@ -82,6 +82,9 @@ class PairSaltdemViscous : public PairSaltdem {
   template <int DIM>
   Weights pair_weights(const double *radius, int i, int j, int itype, int jtype) const;
   template <int DIM> double partner_mass(const double *radius, int i, int j) const;    // mu_ij
+  // noslip surface: what the viscosity adds to v_i - v_j, o_i - o_j of a fluid-boundary pair
+  // (the boundary's offset, slip); false (ov untouched) for any other pair
+  template <int DIM> bool noslip_pair(int i, int j, int itype, int jtype, double *ov) const;
 
   // CONTACT mode: dashpot coefficient per unit viscosity, gamma = calibration * eta
   static constexpr double DEFAULT_CALIBRATION = 1.0;

@@ -249,6 +249,16 @@ PairSaltdemViscous::pair_weights(const double *radius, int i, int j, int itype, 
   return w;
 }
 
+template <int DIM>
+inline bool PairSaltdemViscous::noslip_pair(int i, int j, int itype, int jtype, double *ov) const
+{
+  if (!noslip_surface || fluidself[itype] == fluidself[jtype]) return false;
+  const double *o = fluidself[itype] ? &slip[3 * j] : &slip[3 * i];
+  const double sign = fluidself[itype] ? -1.0 : 1.0;
+  for (int k = 0; k < DIM; k++) ov[k] = sign * o[k];
+  return true;
+}
+
 /* the salt laws: FLUID pairs need only positions and velocities of the centres and make no
    torque; q: the pair's terms of the continuity equation for i and j, mu_ij v_ij . grad_i W_ij
    and mu_ji v_ij . grad_i W_ij (pair_weights) */
@@ -271,11 +281,7 @@ int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, 
                                 &pmat[SaltDEM::NSYM * i], &pmat[SaltDEM::NSYM * j], pm);
     // noslip surface: a boundary partner shows the fluid its extrapolated velocity
     double ov[3] = {0.0, 0.0, 0.0};
-    if (noslip_surface && fluidself[itype] != fluidself[jtype]) {
-      const double *o = fluidself[itype] ? &slip[3 * j] : &slip[3 * i];
-      const double sign = fluidself[itype] ? -1.0 : 1.0;
-      for (int k = 0; k < DIM; k++) ov[k] = sign * o[k];
-    }
+    noslip_pair<DIM>(i, j, itype, jtype, ov);
     double divw = 0.0;
     const bool touch = SaltDEM::viscous_fluid_force<DIM, EVFLAG>(
         p, d, vr, ov, r, a.radius[i] + a.radius[j], w.vi, w.vj, pm, f, evdwl, divw);

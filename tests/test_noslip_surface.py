@@ -147,3 +147,10 @@ def test_3d_block_on_a_wall_layer(tmp_path):
     assert centre[-1] - surface[-1] > 0.05
     for newton in ("off", "on"):
         np.testing.assert_allclose(vx("surface", ranks=2, newton=newton), surface, rtol=1e-8)
+
+
+@pytest.mark.parametrize("value", ["sideways", "1"])
+def test_noslip_needs_centre_or_surface(tmp_path, value):
+    from lmprun import assert_error
+    r = run_lmp(DECK_3D.replace("noslip ${noslip}", f"noslip {value}"), tmp_path, newton="off")
+    assert_error(r, f"noslip '{value}' is not a boundary", "surface", "centre")

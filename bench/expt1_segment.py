@@ -23,7 +23,7 @@ reference lies within the floor cannot be told from it.
       --seg paper:0.002:20:1 --seg paper-omp2:0.002:20:2 --seg new:0:20:1 --seg new-omp2:0:20:2 \\
       --ref paper --floor paper:paper-omp2 --floor new:new-omp2 [--length 50] [--table T.md]
 
---seg NAME:DT:S:THREADS[:SUBSTEPS[:VAR=VALUE,...]] (SUBSTEPS: the salt's viscous sub-steps, default 1; VAR=VALUE: other deck variables, e.g. kn_cs=2.5e9; DT 0: the restart file's step, or with SUBSTEPS > 1 0.85 of the limit; S 0: the preset's; a segment already run, with its done.json, is not run again);
+--seg NAME:DT:S:THREADS[:SUBSTEPS[:VAR=VALUE,...]] (SUBSTEPS: the salt's viscous sub-steps, default 1; VAR=VALUE: other deck variables, e.g. kn_cs=2.5e9; DT 0: 0.85 of the stable limit with the segment's sub-steps; S 0: the preset's; a segment already run, with its done.json, is not run again);
 --run NAME runs only that segment (to spread segments over cores) and compares nothing.
 """
 import argparse
@@ -81,8 +81,9 @@ def segment(name, dt, S, threads, substeps, more, preset, restart, st, length, w
     extra = ["-var", "f", f"{end:.6f}", "-var", "dt", f"{dt:g}"]
     if S > 0:    # else the preset's
         extra += ["-var", "S", f"{S:g}", "-var", "S_cover", f"{S:g}"]
-    if substeps > 1:    # the salt's viscosity in sub-steps (DT 0: the step follows its limit)
-        extra += ["-var", "substeps", str(substeps)]
+    # the salt's viscous sub-steps, 1 = none, always given: a resumed run keeps the file's
+    # otherwise (DT 0: the step follows the limit)
+    extra += ["-var", "substeps", str(substeps)]
     for kv in more:    # other deck variables, NAME=VALUE
         k, v = kv.split("=")
         extra += ["-var", k, v]

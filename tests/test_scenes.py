@@ -194,6 +194,37 @@ def test_resume_from_restart_file(tmp_path, name):
     assert dump_time(last(part)) == pytest.approx(dump_time(last(full)), rel=1e-12)
 
 
+def test_resume_keeps_or_sets_the_substeps(tmp_path):
+    """A resumed run keeps the restart file's viscous sub-steps unless -var substeps gives them:
+    the default (0) and 2 continue a 2-sub-step run alike (to the bit), 1 turns them off (a
+    plain reference resumed from a sub-stepped file), and the log says which."""
+    first = tmp_path / "first"
+    first.mkdir()
+    run_deck("expt1.in", first, preset="tiny", substeps=2, f=1)
+    restart = max(first.glob("expt1.restart.*"), key=lambda p: p.stat().st_mtime)
+    last = {}
+    for n in (0, 1, 2):
+        wd = tmp_path / f"sub{n}"
+        wd.mkdir()
+        for p in first.glob("pack_*.data"):
+            (wd / p.name).write_bytes(p.read_bytes())
+        run_deck("expt1.in", wd, preset="tiny", substeps=n, restart=str(restart), f=1.5)
+        said = "the viscosity in 2 sub-steps per step" in (wd / "log.lammps").read_text()
+        assert said == (n != 1), f"-var substeps {n}: the log says otherwise"
+        last[n] = dumps(wd, "expt1")[-1]
+    for c in ("x", "y", "vx", "vy"):
+        np.testing.assert_array_equal(last[0][c], last[2][c])
+    assert np.abs(last[1]["vx"] - last[2]["vx"]).max() > 0, "substeps 1 did not change the run"
+
+
+def test_negative_substeps_stop(tmp_path):
+    r = subprocess.run([lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-var", "root",
+                        str(ROOT), "-var", "preset", "tiny", "-var", "substeps", "-1", "-log",
+                        "none", "-echo", "none"], cwd=tmp_path, capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode != 0 and "substeps -1 must be 0 (default), 1 or more" in r.stdout
+
+
 def dump_time(path):
     lines = path.read_text().splitlines()
     return float(lines[lines.index("ITEM: TIME") + 1])

@@ -339,6 +339,10 @@ void PairSaltdemViscous::init_style()
                    "Pair style {}: no-slip at the surfaces of the boundary discs (noslip "
                    "surface: the fluid's velocity extrapolated into them)\n",
                    name);
+  // said at every run: a resumed run keeps the file's sub-steps unless they are set again
+  if (any_fluid && substeps > 1 && comm->me == 0)
+    utils::logmesg(lmp, "Pair style {}: the viscosity in {} sub-steps per step (substeps)\n", name,
+                   substeps);
   PairSaltdem::init_style();
 }
 

@@ -24,7 +24,8 @@ reference lies within the floor cannot be told from it.
       --ref paper --floor paper:paper-omp2 --floor new:new-omp2 [--length 50] [--table T.md]
 
 --seg NAME:DT:S:THREADS[:SUBSTEPS[:VAR=VALUE,...]] (SUBSTEPS: the salt's viscous sub-steps, default 1; VAR=VALUE: other deck variables, e.g. kn_cs=2.5e9; DT 0: 0.85 of the stable limit with the segment's sub-steps; S 0: the preset's; a segment already run, with its done.json, is not run again);
---run NAME runs only that segment (to spread segments over cores) and compares nothing.
+--run NAME runs only that segment (to spread segments over cores) and compares nothing;
+--matrix adds the differences between every two segments (B against A).
 """
 import argparse
 import json
@@ -119,6 +120,8 @@ def main(argv=None):
     ap.add_argument("--ref", help="the reference segment")
     ap.add_argument("--floor", action="append", default=[], help="A:B, a pair of the same settings")
     ap.add_argument("--table", help="write the table (markdown) here too")
+    ap.add_argument("--matrix", action="store_true",
+                    help="also every pair of segments (the floor's and the knob's spread from more than one sample)")
     a = ap.parse_args(argv)
     work = pathlib.Path(a.work).resolve()
     restart = a.restart.resolve()
@@ -143,6 +146,13 @@ def main(argv=None):
         rows.append(f"| {y}{' (floor)' if kind else ''} | {r['dt']:.4g} | {r['S'] or 'preset'} | {r['threads']} | "
                     f"{r['steps']} | {r['cpu_s']:.0f} | {x} | {c['thickness']:.4f} | {c['marker']:.4f} | "
                     f"{c['strain']:.3f} |")
+    if a.matrix:
+        rows += ["", "| A | B | thickness | marker | strain |", "| --- | --- | --- | --- | --- |"]
+        names = list(res)
+        for i, x in enumerate(names):
+            for y in names[i + 1:]:
+                c = compare(f[x], f[y], a.length)
+                rows.append(f"| {x} | {y} | {c['thickness']:.4f} | {c['marker']:.4f} | {c['strain']:.3f} |")
     table = "\n".join(rows)
     print(f"restart at {st['disp']:.1f} m (step {st['step']}), segments of {a.length:g} m\n{table}")
     (work / "segments.json").write_text(json.dumps(dict(start=st, runs=res), indent=1) + "\n")

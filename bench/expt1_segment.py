@@ -51,13 +51,23 @@ def deck_args(preset, restart, extra):
             "-var", "restart", str(restart)] + extra
 
 
+def load_done(done):
+    """A segment's done.json; its dump paths may be relative to the work directory (a reference
+    segment kept in bench/segments/, copied into the work directory, is not run again)."""
+    res = json.loads(done.read_text())
+    for k in ("dump", "first", "last"):
+        if k in res:
+            res[k] = str((done.parent.parent / res[k]).resolve())
+    return res
+
+
 def start(preset, restart, work):
     """The restart's state as a frame (resume_frame 1, no frame to run): its dump and its
     displacement and step."""
     d = work / "start"
     done = d / "done.json"
     if done.exists():
-        return json.loads(done.read_text())
+        return load_done(done)
     d.mkdir(parents=True, exist_ok=True)
     p = subprocess.run(deck_args(preset, restart, ["-var", "resume_frame", "1", "-var", "f", "0"]),
                        cwd=d, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
@@ -76,7 +86,7 @@ def segment(name, dt, S, threads, substeps, more, preset, restart, st, length, w
     d = work / name
     done = d / "done.json"
     if done.exists():
-        return json.loads(done.read_text())
+        return load_done(done)
     d.mkdir(parents=True, exist_ok=True)
     end = st["disp"] + length
     extra = ["-var", "f", f"{end:.6f}", "-var", "dt", f"{dt:g}"]

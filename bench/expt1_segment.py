@@ -23,7 +23,8 @@ reference lies within the floor cannot be told from it.
       --seg paper:0.002:20:1 --seg paper-omp2:0.002:20:2 --seg new:0:20:1 --seg new-omp2:0:20:2 \\
       --ref paper --floor paper:paper-omp2 --floor new:new-omp2 [--length 50] [--table T.md]
 
---seg NAME:DT:S:THREADS[:SUBSTEPS[:VAR=VALUE,...]] (SUBSTEPS: the salt's viscous sub-steps, default 1; VAR=VALUE: other deck variables, e.g. kn_cs=2.5e9; DT 0: 0.85 of the stable limit with the segment's sub-steps; S 0: the preset's; a segment already run, with its done.json, is not run again);
+--seg NAME:DT:S:THREADS[:SUBSTEPS[:VAR=VALUE,...]] (THREADS: OpenMP threads, or RxT for R MPI ranks of
+T threads each, e.g. 2x1 - another round-off sample of the floor; SUBSTEPS: the salt's viscous sub-steps, default 1; VAR=VALUE: other deck variables, e.g. kn_cs=2.5e9; DT 0: 0.85 of the stable limit with the segment's sub-steps; S 0: the preset's; a segment already run, with its done.json, is not run again);
 --run NAME runs only that segment (to spread segments over cores) and compares nothing;
 --matrix adds the differences between every two segments (B against A).
 """
@@ -33,6 +34,7 @@ import os
 import pathlib
 import re
 import resource
+import shutil
 import subprocess
 import sys
 import time
@@ -45,8 +47,13 @@ def lmp_path():
     return os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
 
 
-def deck_args(preset, restart, extra):
-    return [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-log", "log.lammps",
+def deck_args(preset, restart, extra, ranks=1):
+    mpi = []
+    if ranks > 1:
+        if not shutil.which("mpirun"):
+            sys.exit("expt1_segment: mpirun not found (install openmpi-bin) for a segment on MPI ranks")
+        mpi = ["mpirun", "-np", str(ranks)] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+    return mpi + [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-log", "log.lammps",
             "-echo", "none", "-screen", "none", "-var", "root", str(ROOT), "-var", "preset", preset,
             "-var", "restart", str(restart)] + extra
 
@@ -82,7 +89,7 @@ def start(preset, restart, work):
     return res
 
 
-def segment(name, dt, S, threads, substeps, more, preset, restart, st, length, work):
+def segment(name, dt, S, ranks, threads, substeps, more, preset, restart, st, length, work):
     d = work / name
     done = d / "done.json"
     if done.exists():
@@ -102,7 +109,7 @@ def segment(name, dt, S, threads, substeps, more, preset, restart, st, length, w
         extra += ["-sf", "omp", "-pk", "omp", str(threads)]
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.time()
-    p = subprocess.run(deck_args(preset, restart, extra), cwd=d, capture_output=True, text=True,
+    p = subprocess.run(deck_args(preset, restart, extra, ranks), cwd=d, capture_output=True, text=True,
                        env=dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_WAIT_POLICY="passive"))
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     log = (d / "log.lammps").read_text() if (d / "log.lammps").exists() else ""
@@ -110,7 +117,7 @@ def segment(name, dt, S, threads, substeps, more, preset, restart, st, length, w
         raise RuntimeError(f"{name}: {[l for l in log.splitlines() if 'ERROR' in l][:1] or log[-1500:]}")
     dumps = sorted(d.glob("dump.expt1.*.txt"), key=lambda q: int(q.name.split(".")[2]))
     step_dt = re.findall(r"time step ([0-9.eE+-]+) s, drive", log)
-    res = dict(name=name, dt=float(step_dt[-1]) if step_dt else dt, S=S, threads=threads,
+    res = dict(name=name, dt=float(step_dt[-1]) if step_dt else dt, S=S, ranks=ranks, threads=threads,
                substeps=substeps, more=list(more),
                steps=int(dumps[-1].name.split(".")[2]) - st["step"],
                cpu_s=(after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
@@ -139,7 +146,8 @@ def main(argv=None):
     for s in a.seg:
         name, dt, S, th, *sub = s.split(":")
         more = tuple(sub[1].split(",")) if len(sub) > 1 and sub[1] else ()
-        segs[name] = (float(dt), float(S), int(th), int(sub[0]) if sub else 1, more)
+        ranks, th = th.split("x") if "x" in th else (1, th)
+        segs[name] = (float(dt), float(S), int(ranks), int(th), int(sub[0]) if sub else 1, more)
     st = start(a.preset, restart, work)
     if a.run:
         print(json.dumps(segment(a.run, *segs[a.run], a.preset, restart, st, a.length, work)))
@@ -153,7 +161,8 @@ def main(argv=None):
     for x, y, kind in pairs:
         c = compare(f[x], f[y], a.length)
         r = res[y]
-        rows.append(f"| {y}{' (floor)' if kind else ''} | {r['dt']:.4g} | {r['S'] or 'preset'} | {r['threads']} | "
+        par = f"{r.get('ranks', 1)}x{r['threads']}" if r.get("ranks", 1) > 1 else r["threads"]
+        rows.append(f"| {y}{' (floor)' if kind else ''} | {r['dt']:.4g} | {r['S'] or 'preset'} | {par} | "
                     f"{r['steps']} | {r['cpu_s']:.0f} | {x} | {c['thickness']:.4f} | {c['marker']:.4f} | "
                     f"{c['strain']:.3f} |")
     if a.matrix:

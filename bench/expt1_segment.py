@@ -15,6 +15,9 @@ each segment's last frame):
   marker     RMS difference of the mean displacement over the segment's fault displacement
   strain     RMS difference of the mean shear strain over the reference's RMS
 
+and, as a reading of what the marker differences are made of, each segment's glide: the mean
+horizontal displacement of the cover's discs (the cover gliding on the salt).
+
 The floor: the same settings on 1 OpenMP thread and on 2 (round-off only, which the granular
 cover turns into a different, equally valid run).  A setting whose difference from the
 reference lies within the floor cannot be told from it.
@@ -41,6 +44,16 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from expt1_error import ROOT, compare, fields    # noqa: E402  (the same measures)
+from saltdem_post.dump import match_ids, read_frame    # noqa: E402
+
+
+def glide(res):
+    """Mean horizontal displacement (m) of the cover's discs (type 1) over the segment: the
+    cover gliding on the salt, which most of the marker differences are made of."""
+    a, b = read_frame(res["first"]), read_frame(res["last"])
+    ia, ib = match_ids(a.ids, b.ids)
+    cover = a["type"][ia] == 1
+    return float((b.xy[ib][cover, 0] - a.xy[ia][cover, 0]).mean())
 
 
 def lmp_path():
@@ -154,8 +167,9 @@ def main(argv=None):
         return 0
     res = {n: segment(n, *v, a.preset, restart, st, a.length, work) for n, v in segs.items()}
     f = {n: fields(r) for n, r in res.items()}
-    rows = ["| segment | dt (s) | S | threads | steps | CPU (s) | against | thickness | marker | strain |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    g = {n: glide(r) for n, r in res.items()}
+    rows = ["| segment | dt (s) | S | threads | steps | CPU (s) | against | thickness | marker | strain | glide (m) |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     pairs = [(x, y, "floor") for x, y in (p.split(":") for p in a.floor)]
     pairs += [(a.ref, n, "") for n in res if a.ref and n != a.ref and not any(n == y for _, y, _ in pairs)]
     for x, y, kind in pairs:
@@ -164,7 +178,7 @@ def main(argv=None):
         par = f"{r.get('ranks', 1)}x{r['threads']}" if r.get("ranks", 1) > 1 else r["threads"]
         rows.append(f"| {y}{' (floor)' if kind else ''} | {r['dt']:.4g} | {r['S'] or 'preset'} | {par} | "
                     f"{r['steps']} | {r['cpu_s']:.0f} | {x} | {c['thickness']:.4f} | {c['marker']:.4f} | "
-                    f"{c['strain']:.3f} |")
+                    f"{c['strain']:.3f} | {g[y]:.2f} |")
     if a.matrix:
         rows += ["", "| A | B | thickness | marker | strain |", "| --- | --- | --- | --- | --- |"]
         names = list(res)
@@ -172,6 +186,7 @@ def main(argv=None):
             for y in names[i + 1:]:
                 c = compare(f[x], f[y], a.length)
                 rows.append(f"| {x} | {y} | {c['thickness']:.4f} | {c['marker']:.4f} | {c['strain']:.3f} |")
+    rows += ["", "glide (m): " + ", ".join(f"{n} {v:.2f}" for n, v in g.items())]
     table = "\n".join(rows)
     print(f"restart at {st['disp']:.1f} m (step {st['step']}), segments of {a.length:g} m\n{table}")
     (work / "segments.json").write_text(json.dumps(dict(start=st, runs=res), indent=1) + "\n")

@@ -125,7 +125,8 @@ def cell_means(xy, values, x0, y0, nx, ny):
 def fields(res):
     """Faulting-stage fields of one run on a fixed grid of CELL x CELL cells (by the discs'
     positions at displacement 0): salt thickness change per column, mean displacement and
-    mean incremental maximum shear strain of the cover and salt discs per cell."""
+    mean incremental maximum shear strain of the cover and salt discs per cell; and the mean
+    horizontal displacement of the cover's discs (glide, m)."""
     a, b = read_frame(res["first"]), read_frame(res["last"])
     x0, x1, y0, y1 = 0.0, 6250.0, -250.0, 3000.0
     nx, ny = int(round((x1 - x0) / CELL)), int(round((y1 - y0) / CELL))
@@ -140,7 +141,11 @@ def fields(res):
     ok = np.isfinite(strain.max_shear[sa])
     shear, _ = cell_means(strain.ref_xy[sa][ok], strain.max_shear[sa][ok], x0, y0, nx, ny)
     full = count >= 3
-    return dict(dth=th1.thickness - th0.thickness, disp=disp, shear=shear[:, 0], full=full)
+    # the cover's glide on the salt: the mean horizontal displacement of its discs (type 1)
+    cover = a["type"][ia] == 1
+    glide = float((b.xy[ib][cover, 0] - a.xy[ia][cover, 0]).mean())
+    return dict(dth=th1.thickness - th0.thickness, disp=disp, shear=shear[:, 0], full=full,
+                glide=glide)
 
 
 def compare(ref, run, fault):

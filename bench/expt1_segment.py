@@ -44,16 +44,6 @@ import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from expt1_error import ROOT, compare, fields    # noqa: E402  (the same measures)
-from saltdem_post.dump import match_ids, read_frame    # noqa: E402
-
-
-def glide(res):
-    """Mean horizontal displacement (m) of the cover's discs (type 1) over the segment: the
-    cover gliding on the salt, which most of the marker differences are made of."""
-    a, b = read_frame(res["first"]), read_frame(res["last"])
-    ia, ib = match_ids(a.ids, b.ids)
-    cover = a["type"][ia] == 1
-    return float((b.xy[ib][cover, 0] - a.xy[ia][cover, 0]).mean())
 
 
 def lmp_path():
@@ -167,7 +157,7 @@ def main(argv=None):
         return 0
     res = {n: segment(n, *v, a.preset, restart, st, a.length, work) for n, v in segs.items()}
     f = {n: fields(r) for n, r in res.items()}
-    g = {n: glide(r) for n, r in res.items()}
+    g = {n: v["glide"] for n, v in f.items()}
     rows = ["| segment | dt (s) | S | threads | steps | CPU (s) | against | thickness | marker | strain | glide (m) |",
             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     pairs = [(x, y, "floor") for x, y in (p.split(":") for p in a.floor)]

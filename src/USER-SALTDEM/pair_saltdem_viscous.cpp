@@ -62,7 +62,7 @@ PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
   // volume, boundary fill, pressure matrix and no-slip offset, or the sub-step velocities; the
   // kernel sums of ghosts (newton on), or their sub-step forces
   comm_forward = 2 + SaltDEM::NSYM + 3;
-  comm_reverse = NMOM;
+  comm_reverse = NMOM_MAX;
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -350,8 +350,8 @@ void PairSaltdemViscous::init_style()
    whose own pair is FLUID, over the FLUID pairs of the list, owned and ghost atoms, and
    whether its kernel is full (interior[i] = 1: its neighbours surround it, see
    SaltDEM::INTERIOR_MAX; 0 otherwise): for the reference density (FixSaltdemDensity).  The
-   sums use the moment array (the density in the slot MOM_WF, the first moment in the slots
-   of S, its norm in MOM_WB: slots the reverse communication sends) */
+   sums use the moment array (the density in the slot WF, the first moment in the slots of
+   the fluid moment, its norm in WB; Layout) */
 
 void PairSaltdemViscous::kernel_density(double *out, double *interior)
 {
@@ -372,11 +372,12 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
-  for (int i = 0; i < NMOM * nall; i++) moment[i] = 0.0;
+  using L = Layout<DIM>;
+  std::fill_n(moment, L::NMOM * nall, 0.0);
   for (int i = 0; i < nlocal; i++) {
     const int t = type[i];
     if (fluidself[t])
-      moment[NMOM * i + MOM_WF] = m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0);
+      moment[L::NMOM * i + L::WF] = m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0);
   }
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -396,14 +397,14 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *
       const double s = (r < 2.0 * p.h) ? 1.0 - 0.5 * r / p.h : 0.0;
       const double g = s * s * s;    // |W'|/r up to a constant
       const double mij = partner_mass<DIM>(radius, i, j), mji = partner_mass<DIM>(radius, j, i);
-      double *Mi = &moment[NMOM * i];
-      Mi[MOM_WF] += mij * w;
-      Mi[MOM_WB] += mij * g * r;
+      double *Mi = &moment[L::NMOM * i];
+      Mi[L::WF] += mij * w;
+      Mi[L::WB] += mij * g * r;
       for (int k = 0; k < DIM; k++) Mi[k] += mij * g * d[k];
       if (newton_pair || j < nlocal) {
-        double *Mj = &moment[NMOM * j];
-        Mj[MOM_WF] += mji * w;
-        Mj[MOM_WB] += mji * g * r;
+        double *Mj = &moment[L::NMOM * j];
+        Mj[L::WF] += mji * w;
+        Mj[L::WB] += mji * g * r;
         for (int k = 0; k < DIM; k++) Mj[k] -= mji * g * d[k];
       }
     }
@@ -411,14 +412,14 @@ template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *
   comm_mode = COMM_PRESSURE;
   if (newton_pair) comm->reverse_comm(this);
   for (int i = 0; i < nlocal; i++) {
-    const double *Mi = &moment[NMOM * i];
+    const double *Mi = &moment[L::NMOM * i];
     const int t = type[i];
-    out[i] = fluidself[t] ? Mi[MOM_WF] : 0.0;
+    out[i] = fluidself[t] ? Mi[L::WF] : 0.0;
     double g2 = 0.0;
     for (int k = 0; k < DIM; k++) g2 += Mi[k] * Mi[k];
-    interior[i] =
-        (fluidself[t] && Mi[MOM_WB] > 0.0 && sqrt(g2) < SaltDEM::INTERIOR_MAX * Mi[MOM_WB]) ? 1.0
-                                                                                            : 0.0;
+    interior[i] = (fluidself[t] && Mi[L::WB] > 0.0 && sqrt(g2) < SaltDEM::INTERIOR_MAX * Mi[L::WB])
+        ? 1.0
+        : 0.0;
   }
 }
 
@@ -445,25 +446,26 @@ void PairSaltdemViscous::pre_loop()
   grow_arrays();
   if (!any_fluid) return;
   material_density();
+  if (domain->dimension == 2)
+    pressure_matrices<2>();
+  else
+    pressure_matrices<3>();
+  comm_mode = COMM_PRESSURE;
+  comm->forward_comm(this);
+}
+
+template <int DIM> void PairSaltdemViscous::pressure_matrices()
+{
+  using L = Layout<DIM>;
   const int nlocal = atom->nlocal;
   const double *m = atom->rmass;
   const int *type = atom->type;
   const double *rho = fix_density->rho;
   const double *rho0 = fix_density->rho0.data();
   const int nt = atom->ntypes;
-  const int dim = domain->dimension;
-  constexpr int NS = SaltDEM::NSYM;
 
-  if (dim == 2)
-    kernel_moments<2>();
-  else
-    kernel_moments<3>();
-  if (noslip_surface) {
-    if (dim == 2)
-      noslip_offsets<2>();
-    else
-      noslip_offsets<3>();
-  }
+  kernel_moments<DIM>();
+  if (noslip_surface) noslip_offsets<DIM>();
 
   // a boundary particle (wall, cover) has, beside a fluid particle, the volume of the fluid it
   // stands for (pair_weights: its mass as that fluid's over the fluid's reference density);
@@ -480,22 +482,16 @@ void PairSaltdemViscous::pre_loop()
     const int t = type[i];
     const double r = fluidself[t] ? (rho[i] > 0.0 ? rho[i] : rho0[t]) : rhob;
     vol[i] = SaltDEM::particle_volume(m[i], r);
-    double *M = &moment[NMOM * i];
-    fill[i] = fluidself[t] ? SaltDEM::boundary_fill(M[MOM_WF], M[MOM_WB], r, rho0[t], fill_max)
-                           : 1.0;
-    double *A = &pmat[NS * i];
+    const double *M = &moment[L::NMOM * i];
+    fill[i] = fluidself[t] ? SaltDEM::boundary_fill(M[L::WF], M[L::WB], r, rho0[t], fill_max) : 1.0;
+    double *A = &pmat[L::NS * i];
     if (isfluid[t]) {
       const double a = SaltDEM::pressure_term(m[i], params[t][t].K, r, rho0[t]);
-      for (int k = 0; k < NS; k++) A[k] = M[k] + fill[i] * M[NS + k];
-      if (dim == 2)
-        SaltDEM::pressure_matrix<2>(a, r, A);
-      else
-        SaltDEM::pressure_matrix<3>(a, r, A);
+      for (int k = 0; k < L::NS; k++) A[k] = M[k] + fill[i] * M[L::NS + k];
+      SaltDEM::pressure_matrix<DIM>(a, r, A);
     } else
-      for (int k = 0; k < NS; k++) A[k] = 0.0;
+      for (int k = 0; k < L::NS; k++) A[k] = 0.0;
   }
-  comm_mode = COMM_PRESSURE;
-  comm->forward_comm(this);
 }
 
 /* the kernel sums of the owned particles of the types whose own pair is FLUID, over the FLUID
@@ -503,13 +499,14 @@ void PairSaltdemViscous::pre_loop()
    pair is not FLUID): the moments S = sum_j m_j w_ij d_ij d_ij and the kernel sums
    sum_j m_j W_ij (i itself among the fluid's); with noslip surface, in the same slots of a
    boundary particle b (whose own sums are not needed), its fluid partners' kernel sums
-   sum_f m_f W_bf in MOM_WF, sum_f m_f W_bf (x_f - x_b) in slots 0.. and sum_f m_f W_bf v_f in
-   slots NSYM.. (noslip_offsets); with newton on the ghosts' parts go home; with viscous
+   sum_f m_f W_bf in WF, sum_f m_f W_bf (x_f - x_b) in slots 0.. and sum_f m_f W_bf v_f in
+   slots NS.. (Layout; noslip_offsets); with newton on the ghosts' parts go home; with viscous
    sub-steps also the list of the FLUID pairs within 2h and their kernel factors */
 
 template <int DIM> void PairSaltdemViscous::kernel_moments()
 {
-  constexpr int NS = SaltDEM::NSYM;
+  using L = Layout<DIM>;
+  constexpr int NS = L::NS;
   const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
   const auto v = atom->v ? (const double(*)[3]) atom->v[0] : nullptr;
   const double *m = atom->rmass;
@@ -518,12 +515,13 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
-  for (int i = 0; i < NMOM * (newton_pair ? nall : nlocal); i++) moment[i] = 0.0;
+  // (a loop over the member pointer would store one double at a time)
+  std::fill_n(moment, L::NMOM * (newton_pair ? nall : nlocal), 0.0);
   const bool sub = substeps > 1;
   const bool ext = noslip_surface;
   // a boundary particle b's sums of a fluid partner f at d = x_f - x_b (sign: +1) or x_b - x_f
   auto add_fluid = [&](double *Mb, int f, double mw, const double *d, double sign) {
-    Mb[MOM_WF] += mw;
+    Mb[L::WF] += mw;
     for (int k = 0; k < DIM; k++) {
       Mb[k] += sign * mw * d[k];
       Mb[NS + k] += mw * v[f][k];
@@ -537,8 +535,8 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
     const double xi0 = x[i][0], xi1 = x[i][1], xi2 = (DIM == 3) ? x[i][2] : 0.0;
     const int *jlist = list->firstneigh[i];
     const SaltDEM::ViscousParams *prow = params[itype];
-    double Mi[NMOM] = {};    // i's sums, stored once
-    if (fi) Mi[MOM_WF] = m[i] * SaltDEM::wendland_c2(DIM, prow[itype].h, 0.0);
+    double Mi[L::NMOM] = {};    // i's sums, stored once
+    if (fi) Mi[L::WF] = m[i] * SaltDEM::wendland_c2(DIM, prow[itype].h, 0.0);
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = jlist[jj] & NEIGHMASK;
       const int jtype = type[j];
@@ -552,28 +550,28 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
       const double s = 1.0 - r * p.ih2;
       if (sub) subpairs.push_back({i, j, p.kvisc * s * s * s});
       const double w = p.cw * s * s * s;
-      const double W = SaltDEM::wendland_c2(DIM, p.h, r);
+      const double W = SaltDEM::wendland_c2_s(p.cW, s);
       // i's partner j goes into i's fluid or boundary sums, and i into j's
       if (fi) {
         const double mij = partner_mass<DIM>(radius, i, j);
         SaltDEM::add_moment<DIM>(mij * w, d, fj ? Mi : Mi + NS);
-        Mi[fj ? MOM_WF : MOM_WB] += mij * W;
+        Mi[fj ? L::WF : L::WB] += mij * W;
       }
       if (fj && (newton_pair || j < nlocal)) {
         const double mji = partner_mass<DIM>(radius, j, i);
-        double *Mj = &moment[NMOM * j];
+        double *Mj = &moment[L::NMOM * j];
         SaltDEM::add_moment<DIM>(mji * w, d, fi ? Mj : Mj + NS);
-        Mj[fi ? MOM_WF : MOM_WB] += mji * W;
+        Mj[fi ? L::WF : L::WB] += mji * W;
       }
       if (ext && fi != fj) {
         if (fj)
           add_fluid(Mi, j, m[j] * W, d, -1.0);
         else if (newton_pair || j < nlocal)
-          add_fluid(&moment[NMOM * j], i, m[i] * W, d, 1.0);
+          add_fluid(&moment[L::NMOM * j], i, m[i] * W, d, 1.0);
       }
     }
     if (fi || ext)
-      for (int k = 0; k < NMOM; k++) moment[NMOM * i + k] += Mi[k];
+      for (int k = 0; k < L::NMOM; k++) moment[L::NMOM * i + k] += Mi[k];
   }
   if (newton_pair) {
     comm_mode = COMM_PRESSURE;
@@ -587,17 +585,17 @@ template <int DIM> void PairSaltdemViscous::kernel_moments()
 
 template <int DIM> void PairSaltdemViscous::noslip_offsets()
 {
-  constexpr int NS = SaltDEM::NSYM;
+  using L = Layout<DIM>;
   const double *const *v = atom->v;
   const double *radius = atom->radius;
   const int *type = atom->type;
   for (int i = 0; i < atom->nlocal; i++) {
     double *o = &slip[3 * i];
-    const double *M = &moment[NMOM * i];
+    const double *M = &moment[L::NMOM * i];
     if (fluidself[type[i]])
       o[0] = o[1] = o[2] = 0.0;
     else
-      SaltDEM::noslip_offset<DIM>(M[MOM_WF], M, M + NS, v[i], radius[i], o);
+      SaltDEM::noslip_offset<DIM>(M[L::WF], M, M + L::NS, v[i], radius[i], o);
   }
 }
 
@@ -732,7 +730,7 @@ void PairSaltdemViscous::grow_arrays()
     memory->create(fother, 3 * nmax, "pair:fother");
   }
   memory->create(pmat, SaltDEM::NSYM * nmax, "pair:pmat");
-  memory->create(moment, NMOM * nmax, "pair:moment");
+  memory->create(moment, NMOM_MAX * nmax, "pair:moment");
   if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
 }
 
@@ -785,7 +783,7 @@ int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, in
     const int j = list[i];
     buf[k++] = vol[j];
     buf[k++] = fill[j];
-    for (int c = 0; c < ns; c++) buf[k++] = pmat[SaltDEM::NSYM * j + c];
+    for (int c = 0; c < ns; c++) buf[k++] = pmat[ns * j + c];
     for (int c = 0; c < nd; c++) buf[k++] = slip[3 * j + c];
   }
   return k;
@@ -804,29 +802,19 @@ void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
   for (int i = first; i < first + n; i++) {
     vol[i] = buf[k++];
     fill[i] = buf[k++];
-    for (int c = 0; c < ns; c++) pmat[SaltDEM::NSYM * i + c] = buf[k++];
+    for (int c = 0; c < ns; c++) pmat[ns * i + c] = buf[k++];
     for (int c = 0; c < nd; c++) slip[3 * i + c] = buf[k++];
   }
 }
 
-/* the slots of an atom's kernel sums in use in this dimension: the two moments' components
-   and the two kernel sums */
-
-int PairSaltdemViscous::moment_slots(int *slot) const
+int PairSaltdemViscous::nmom() const
 {
-  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
-  int k = 0;
-  for (int c = 0; c < ns; c++) slot[k++] = c;
-  for (int c = 0; c < ns; c++) slot[k++] = SaltDEM::NSYM + c;
-  slot[k++] = MOM_WF;
-  slot[k++] = MOM_WB;
-  return k;
+  return (domain->dimension == 2) ? Layout<2>::NMOM : Layout<3>::NMOM;
 }
 
 int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
 {
-  int slot[NMOM];
-  const int ns = moment_slots(slot);
+  const int nm = nmom();
   int k = 0;
   if (comm_mode == COMM_SUBSTEP) {
     for (int i = first; i < first + n; i++)
@@ -834,14 +822,13 @@ int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
     return k;
   }
   for (int i = first; i < first + n; i++)
-    for (int c = 0; c < ns; c++) buf[k++] = moment[NMOM * i + slot[c]];
+    for (int c = 0; c < nm; c++) buf[k++] = moment[nm * i + c];
   return k;
 }
 
 void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  int slot[NMOM];
-  const int ns = moment_slots(slot);
+  const int nm = nmom();
   int k = 0;
   if (comm_mode == COMM_SUBSTEP) {
     for (int i = 0; i < n; i++)
@@ -849,13 +836,13 @@ void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
     return;
   }
   for (int i = 0; i < n; i++)
-    for (int c = 0; c < ns; c++) moment[NMOM * list[i] + slot[c]] += buf[k++];
+    for (int c = 0; c < nm; c++) moment[nm * list[i] + c] += buf[k++];
 }
 
 double PairSaltdemViscous::memory_usage()
 {
   return PairSaltdem::memory_usage() +
-      (2.0 + SaltDEM::NSYM + NMOM + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0) +
+      (2.0 + SaltDEM::NSYM + NMOM_MAX + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0) +
        (slip ? 3.0 : 0.0)) *
       nmax * sizeof(double) +
       (double) subpairs.capacity() * sizeof(SubPair);
@@ -880,12 +867,13 @@ void PairSaltdemViscous::derive(int i, int j)
   const double e = eta[i][j];
   p.cw = SaltDEM::wendland_c2_grad_over_r(domain->dimension, p.h > 0.0 ? p.h : 1.0);
   p.ih2 = (p.h > 0.0) ? 0.5 / p.h : 0.0;
+  p.cW = SaltDEM::wendland_c2(domain->dimension, p.h > 0.0 ? p.h : 1.0, 0.0);
   p.kvisc = 2.0 * correction * e * p.cw;
   p.kfac = (substeps > 1) ? 0.0 : p.kvisc;    // sub-stepped: not in the force pass
   p.gn = calibration * e;
   p.gt = p.ratio * p.gn;
   if (!std::isfinite(p.cw) || !std::isfinite(p.kvisc) || !std::isfinite(p.gn) ||
-      !std::isfinite(p.gt) || !std::isfinite(p.ih2))
+      !std::isfinite(p.gt) || !std::isfinite(p.ih2) || !std::isfinite(p.cW))
     error->all(FLERR,
                "Pair style {}: the dashpot coefficients of types {} {} are not finite (2 "
                "correction eta W'(h) = {}, calibration eta = {}, tangential ratio x that = {}) "

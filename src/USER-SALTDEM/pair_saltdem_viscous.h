@@ -108,19 +108,27 @@ class PairSaltdemViscous : public PairSaltdem {
   SaltDEM::ViscousParams **params;
   double **eta;      // requested viscosity per type pair (extract "eta": fix adapt, fixes)
   double *vol;       // FLUID: particle volume m / rho, owned and ghost atoms
-  double *pmat;      // FLUID: pressure matrix A = m P / rho^2 L per atom (NSYM values, see
-                     // SaltDEM::pressure_matrix), owned and ghost atoms
-  double *moment;    // FLUID: its kernel sums, NMOM values per atom: the moments
+  double *pmat;      // FLUID: pressure matrix A = m P / rho^2 L per atom (Layout::NS values,
+                     // see SaltDEM::pressure_matrix), owned and ghost atoms
+  double *moment;    // FLUID: its kernel sums, Layout::NMOM values per atom: the moments
                      // S = sum_j mu_ij w d d over its fluid and over its boundary partners
-                     // (NSYM each), the kernel sums sum_j mu_ij W over both (see pre_loop)
+                     // (NS each), the kernel sums sum_j mu_ij W over both (see pre_loop)
   double *fill;      // FLUID: the boundary fill of each fluid particle (SaltDEM::boundary_fill)
   double *mdens;     // FLUID: material density m / r^dim of each atom, owned and ghost
   std::vector<double> irho0;    // FLUID: 1 / reference density per type (0: none)
   std::vector<int> influid;     // per type: in some FLUID pair (its discs need a radius)
   void material_density();      // mdens of the owned and ghost atoms
-  static constexpr int NMOM = 2 * 6 + 2;
-  static constexpr int MOM_WF = 12, MOM_WB = 13;    // the kernel sums' slots
-  double *scratch;    // no FLUID pair: what the force pass sums the (zero) q into
+  // the per-atom layout of pmat and moment in DIM dimensions, packed so that the sums of a
+  // 2D disc fill one cache line (8 values): a symmetric matrix has NS values; moment holds the
+  // fluid moment at 0, the boundary moment at NS, the kernel sums over the fluid at WF and
+  // over the boundary at WB
+  template <int DIM> struct Layout {
+    static constexpr int NS = (DIM == 2) ? 3 : 6;    // SaltDEM::nsym
+    static constexpr int WF = 2 * NS, WB = 2 * NS + 1, NMOM = 2 * NS + 2;
+  };
+  static constexpr int NMOM_MAX = Layout<3>::NMOM;
+  int nmom() const;    // Layout<dimension>::NMOM
+  double *scratch;     // no FLUID pair: what the force pass sums the (zero) q into
   class FixSaltdemDensity *fix_density;    // FLUID: the density (state) and d rho / dt
   std::string density_id;                  // its ID
   int *fluidself;    // per type: its own pair is FLUID (continuity density, reference density)
@@ -145,7 +153,7 @@ class PairSaltdemViscous : public PairSaltdem {
   template <int DIM> void viscous_substeps();
   int parse_substeps(const char *);
   template <int DIM> void kernel_density(double *out, double *interior);
-  int moment_slots(int *slot) const;    // the slots of moment that the reverse comm sends
+  template <int DIM> void pressure_matrices();
   template <int DIM> void kernel_moments();
   template <int DIM> void noslip_offsets();
   void grow_arrays();    // vol, pmat, moment (and scratch) for the owned and ghost atoms

@@ -372,6 +372,7 @@ namespace SaltDEM {
     double h;         // FLUID: smoothing length; the kernel reaches 2h
     double K;         // FLUID: bulk modulus of the equation of state P = K (rho/rho0 - 1)
     double cw;        // FLUID: |dW/dr| / r = cw (1 - r/2h)^3 (derived)
+    double cW;        // FLUID: W(0), the kernel's normalisation (derived; wendland_c2_s)
     double ih2;       // FLUID: 1 / 2h (derived)
     double kfac;      // FLUID: 2 eta * kernel constant in the force pass (derived: eta,
                       // dimension, h; 0 when the viscosity is sub-stepped after it)
@@ -532,6 +533,14 @@ namespace SaltDEM {
     const double a = (dimension == 2) ? 7.0 / (4.0 * M_PI * h * h)
                                       : 21.0 / (16.0 * M_PI * h * h * h);
     return a * s * s * s * s * (1.0 + 2.0 * q);
+  }
+
+  /* the same W from s = 1 - r/2h and W(0) = A (the pair loops have s already): 1 + 2q = 5 - 4s,
+   no division */
+  inline double wendland_c2_s(double W0, double s)
+  {
+    const double s2 = s * s;
+    return W0 * s2 * s2 * (5.0 - 4.0 * s);
   }
 
   /* and its |dW/dr| / r = C (1 - r/2h)^3 with C = 35/(4 pi h^4) in 2D and

@@ -278,7 +278,7 @@ int PairSaltdemViscous::law(const Atoms &a, int i, int j, int itype, int jtype, 
     // particle that is not fluid (wall, cover) mirrors the fluid's
     double pm[SaltDEM::NSYM];
     SaltDEM::pressure_pair<DIM>(isfluid[itype], isfluid[jtype], w.mi, w.mj,
-                                &pmat[SaltDEM::NSYM * i], &pmat[SaltDEM::NSYM * j], pm);
+                                &pmat[Layout<DIM>::NS * i], &pmat[Layout<DIM>::NS * j], pm);
     // noslip surface: a boundary partner shows the fluid its extrapolated velocity
     double ov[3] = {0.0, 0.0, 0.0};
     noslip_pair<DIM>(i, j, itype, jtype, ov);

@@ -809,6 +809,9 @@ void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
 
 int PairSaltdemViscous::nmom() const
 {
+  // the header cannot include saltdem_contact.h (minimal style headers): Layout's own NS
+  static_assert(Layout<2>::NS == SaltDEM::nsym<2>() && Layout<3>::NS == SaltDEM::nsym<3>(),
+                "Layout::NS must be SaltDEM::nsym");
   return (domain->dimension == 2) ? Layout<2>::NMOM : Layout<3>::NMOM;
 }
 

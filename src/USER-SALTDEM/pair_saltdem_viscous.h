@@ -153,6 +153,8 @@ class PairSaltdemViscous : public PairSaltdem {
   template <int DIM> void viscous_substeps();
   int parse_substeps(const char *);
   template <int DIM> void kernel_density(double *out, double *interior);
+  // pre_loop's work: the kernel sums (and no-slip offsets), then volume, fill and pressure
+  // matrix of each owned atom
   template <int DIM> void pressure_matrices();
   template <int DIM> void kernel_moments();
   template <int DIM> void noslip_offsets();

@@ -59,6 +59,18 @@ def test_deck_runs_to_target(tiny, name):
     assert list(wd.glob(f"{name}.restart.*")), "no restart files"
 
 
+def test_target_below_the_last_frame_ends_the_run_there(tmp_path):
+    """-var target below the frame list: the frames beyond it are one frame at the target and
+    the run ends there (it ran on with the drive at rest before).  Control: the frame steps
+    follow the drive, 1 m and 1.5 m at 0.05 m/s."""
+    proc = run_deck("expt1.in", tmp_path, preset="tiny", target=1.5, f="1 2 3")
+    assert "expt1: done, displacement 1.5 m" in proc.stdout
+    steps = sorted(int(p.name.split(".")[2]) for p in tmp_path.glob("dump.expt1.*.txt"))
+    assert len(steps) == 3    # 0, 1 and 1.5 m
+    drive = [st - steps[0] for st in steps[1:]]
+    assert drive[1] == pytest.approx(1.5 * drive[0], abs=1)
+
+
 def wall_motion(frames, select):
     """Displacements (first to last frame) of the wall discs chosen by select(x, y)."""
     a, b = frames[0], frames[-1]

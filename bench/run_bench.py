@@ -73,9 +73,12 @@ def parse_args(argv=None):
                    help="comma list of: " + ", ".join(CONFIGS))
     p.add_argument("--var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
                    help="extra -var NAME VALUE for the deck (e.g. skin 2.5)")
-    p.add_argument("--project-atoms", type=float, default=47000,
-                   help="discs of the run to project (default: the paper's Expt 1)")
-    p.add_argument("--project-steps", type=float, default=1e7, help="steps of the projected run")
+    p.add_argument("--project-atoms", type=float, default=48256,
+                   help="discs of the run to project (default: the full Expt 1 with its walls)")
+    p.add_argument("--project-steps", type=float, default=3.26e6,
+                   help="steps of the projected run (default: the full Expt 1 to 1000 m at the "
+                        "full preset's step, 0.00623 s, with its 50,000 settling steps; the "
+                        "paper's 0.002 s takes 1.0e7)")
     p.add_argument("--tag", default="", help="name added to the result files (results-TAG.*)")
     p.add_argument("--timeout", type=int, default=7200, help="seconds per LAMMPS invocation")
     return p.parse_args(argv)

@@ -61,7 +61,7 @@ def test_results_are_well_formed(bench):
     for style in ("saltdem", "stock"):
         assert set(s["speedup_over_serial"][style]) == {"mpi2", "omp2", "mpi4"}
     p = s["projection"]
-    assert p["atoms"] == 47000 and p["steps"] == 1e7
+    assert p["atoms"] == 48256 and p["steps"] == 3.26e6
     for k, v in p["wall_time"].items():
         assert v["hours"] > 0 and v["days"] == pytest.approx(v["hours"] / 24)
     assert res["machine"]["cores"] >= 1 and res["machine"]["cpu"]

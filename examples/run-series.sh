@@ -13,7 +13,7 @@
 #            fig6 with disc-contact salt instead of the default Newtonian SPH salt
 #   eta100   Expts 1-3 with salt 100x more viscous than the paper states (5e10 Pa s, S x100 to
 #            keep the Reynolds number): the Newtonian salt as strong as the paper's kind of salt
-#            is under the scenes' overburden (docs/scenes.md)
+#            is under the scenes' overburden (docs/scenes.md), at both of Fig. 6's rates
 #   syntectonic  Expt 1 with sedimentation that keeps filling the hanging-wall low (every 50 m
 #            of slip, fill to the initial top of the section: examples/scene/sediment.in)
 #            beside the plain Expt 1 (issue 18; docs/gallery.md, "Beyond the paper")
@@ -24,8 +24,9 @@
 # PRESET: full (default: the paper's resolution), medium, quick, tiny.  Every run goes to the
 # paper's 1000 m at the paper's physics (examples/scene/params.in).
 # Output: out/SERIES_PRESET/NAME/ with the frames, log, figures/NAME.png, outcomes/outcomes.md,
-# wall.txt and cmd.txt (the run's lmp command).  A finished run (its 'done' file) is skipped;
-# an interrupted one resumes from the newer of its restart files.  LMP (default build/lmp) and
+# wall.txt and cmd.txt (the run's lmp command); OUT=DIR puts them under DIR instead of out/.
+# A finished run (its 'done' file) is skipped; an interrupted one resumes from the newer of its
+# restart files that matches its checksum (the older one if the newer is damaged).  LMP (default build/lmp) and
 # MPIRUN (e.g. "mpirun -np 8") choose how lmp runs; ONLY="NAME ..." runs only those runs of
 # the series (e.g. to split a series between cores: one run-series.sh per core, each with its
 # own ONLY list).
@@ -65,7 +66,10 @@ contact=("expt1_contact expt1 0.05 $cs" "expt3_contact expt3 0.05 $cs" "expt2_co
 syntectonic=("expt1 expt1 0.05" "expt1_sedfill expt1 0.05 -var sediment fill")
 wedge=("wedge wedge 0.317")
 eta100=("expt1_eta100x expt1 0.05 -var eta 5e10 -var S 400" "expt3_eta100x expt3 0.05 -var eta 5e10 -var S 400"
-        "expt2_eta100x expt2 0.05 -var eta 5e10 -var S 400")
+        "expt2_eta100x expt2 0.05 -var eta 5e10 -var S 400"
+        "expt1_slow_eta100x expt1 0.01 -var eta 5e10 -var S 400"
+        "expt3_slow_eta100x expt3 0.01 -var eta 5e10 -var S 400"
+        "expt2_slow_eta100x expt2 0.01 -var eta 5e10 -var S 400")
 runs=()
 case $series in
   expts) runs=("${expts[@]}") ;;
@@ -83,19 +87,43 @@ case $series in
   *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, eta100, syntectonic, wedge or gallery" >&2; exit 2 ;;
 esac
 
+# The restart file to resume NAME from: the newest of the pair in DIR that matches its checksum
+# (fix saltdem/checksum writes FILE.sha256 beside each).  A newer file that fails (damaged, or
+# cut short by a kill while it was written) is passed over, and the runner says so.  Files without
+# checksums (written before the decks made them) count only when neither file has one.  Nothing
+# usable stops the series rather than start the run again over its frames.
+pick_restart() {
+  local dir=$1 deck=$2 name=$3 f any=0 bad=()
+  local files
+  files=$(cd "$dir" && ls -t "$deck".restart.a "$deck".restart.b 2>/dev/null || true)
+  [ -z "$files" ] && return 0
+  for f in $files; do [ -f "$dir/$f.sha256" ] && any=1; done
+  for f in $files; do
+    if [ "$any" = 0 ]; then echo "$f"; return 0; fi
+    if [ -f "$dir/$f.sha256" ] && (cd "$dir" && sha256sum --status -c "$f.sha256" 2>/dev/null); then
+      [ ${#bad[@]} -gt 0 ] && echo "run-series: $name: ${bad[*]} fails its checksum (damaged, or cut short while written): resuming from the older $f" >&2
+      echo "$f"; return 0
+    fi
+    bad+=("$f")
+  done
+  echo "run-series: $name: no restart file in $dir matches its checksum (${bad[*]}): remove the directory to start the run again" >&2
+  return 1
+}
+
 for r in "${runs[@]}"; do
   read -r name deck rate vars <<< "$r"
   [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]] && continue
-  out="$root/out/${series}_${preset}/$name"
+  out="${OUT:-$root/out}/${series}_${preset}/$name"
   if [ -f "$out/done" ]; then echo "run-series: $name done already ($out)"; continue; fi
   mkdir -p "$out"
   resume=()
-  newest=$(cd "$out" && ls -t "$deck".restart.a "$deck".restart.b 2>/dev/null | head -1 || true)
-  [ -n "$newest" ] && resume=(-var restart "$newest")
+  from=$(pick_restart "$out" "$deck" "$name")
+  [ -n "$from" ] && resume=(-var restart "$from")
   echo "run-series: $name ($deck.in -var rate $rate $vars ${resume[*]}) in $out"
   echo "lmp -in examples/$deck.in -var preset $preset -var rate $rate $vars" | tr -s ' ' > "$out/cmd.txt"
   start=$(date +%s)
-  seg=1; [ -f "$out/wall_segments.txt" ] && seg=$(( $(wc -l < "$out/wall_segments.txt") + 1 ))    # log.lammps, log.2.lammps, ...
+  # segment number from the segments' own output (a killed one left its stdout but no wall time)
+  seg=$(( $(find "$out" -maxdepth 1 -name 'stdout.*.txt' | wc -l) + 1 ))    # log.lammps, log.2.lammps, ...
   log=log.lammps; [ "$seg" -gt 1 ] && log=log.$seg.lammps
   # shellcheck disable=SC2086
   (cd "$out" && ${MPIRUN:-} "$lmp" -in "$root/examples/$deck.in" -var root "$root" \

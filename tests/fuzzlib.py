@@ -14,6 +14,8 @@ outcome into
   accepted   exit 0 (the deck's run completed); `nonfinite` if a thermo value was not finite
   crash      a signal, abort, uncaught exception, segmentation fault, exit without an ERROR
              line, or a hang (time limit)
+  infra      Open MPI failed to start, so lmp never ran (mpistart.py): retried with a back-off
+             by `run_case`, and reported as an infrastructure failure if it persists
 """
 import math
 import os
@@ -23,6 +25,8 @@ import subprocess
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+
+import mpistart
 
 NUM_MUTATIONS = [("0", "0"), ("neg", None), ("nan", "nan"), ("inf", "inf"), ("1e300", "1e300"),
                  ("-1e300", "-1e300"), ("1e-300", "1e-300"), ("text", "abc")]
@@ -155,6 +159,8 @@ def finite(tok):
 def classify(rc, out, timed_out=False):
     """The outcome of one lmp run (rc as subprocess reports it: negative for a signal)."""
     tail = out[-3000:]
+    if rc != 0 and not timed_out and mpistart.start_failed(out):
+        return Outcome("infra", "Open MPI failed to start: lmp never ran", rc, tail=tail)
     if timed_out:
         return Outcome("crash", "hang: time limit reached", rc, tail=tail)
     for m in CRASH_MARKERS:
@@ -194,9 +200,9 @@ def run_case(lmp, case, timeout=30.0):
     d = tempfile.mkdtemp(prefix="saltdem-fuzz-")
     t0 = time.monotonic()
     try:
-        proc = subprocess.run([lmp, "-echo", "none", "-log", "none", "-nocite"], input=case.deck,
-                              cwd=d, capture_output=True, text=True, timeout=timeout,
-                              env=lmp_env(), errors="replace")
+        proc, _, _ = mpistart.run([lmp, "-echo", "none", "-log", "none", "-nocite"],
+                                  input=case.deck, cwd=d, capture_output=True, text=True,
+                                  timeout=timeout, env=lmp_env(), errors="replace")
         o = classify(proc.returncode, proc.stdout + proc.stderr)
     except subprocess.TimeoutExpired:
         o = classify(0, "", timed_out=True)

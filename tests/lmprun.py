@@ -7,6 +7,8 @@ import subprocess
 
 import pytest
 
+import mpistart
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
@@ -68,9 +70,18 @@ def run_lmp(deck, workdir, np=1, omp=0, timeout=600, args=(), **variables):
         cmd = [mpirun, *extra, "--oversubscribe", "-np", str(np), *cmd]
     # passive waiting: threads on a busy 2-core machine otherwise spin
     env = dict(os.environ, OMP_NUM_THREADS=str(omp or 1), OMP_WAIT_POLICY="passive")
-    proc = subprocess.run(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout,
-                          env=env)
+    proc = run_cmd(cmd, cwd=workdir, capture_output=True, text=True, timeout=timeout, env=env)
     return Run(proc, workdir)
+
+
+def run_cmd(cmd, **kwargs):
+    """subprocess.run for a command that starts lmp (directly, by mpirun or through a script),
+    retried while Open MPI fails to start (mpistart); a failure that persists fails the test as
+    an infrastructure failure, never as a result of lmp."""
+    proc, tries, failed = mpistart.run(cmd, **kwargs)
+    if failed:
+        pytest.fail(mpistart.describe(proc, tries), pytrace=False)
+    return proc
 
 
 def check_ok(run):

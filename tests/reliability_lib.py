@@ -15,6 +15,9 @@ import subprocess
 import threading
 import time
 
+import pytest
+
+import mpistart
 from lmprun import ROOT, lmp_path
 
 SCENE_DECK = (ROOT / "tests" / "decks" / "scene_mini.in").read_text()
@@ -170,6 +173,17 @@ def run_watched(deck, workdir, timeout=600, period=0.05, **variables):
     for k, v in variables.items():
         cmd += ["-var", k, str(v)]
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
+    for k in range(mpistart.TRIES):
+        rc, out, samples = _watched(cmd, workdir, env, timeout, period)
+        if rc == 0 or not mpistart.start_failed(out):
+            return rc, out, samples
+        if k + 1 < mpistart.TRIES:
+            time.sleep(mpistart.BACKOFF[min(k, len(mpistart.BACKOFF) - 1)])
+    pytest.fail(f"INFRASTRUCTURE FAILURE, not a test result: Open MPI failed to start lmp "
+                f"{mpistart.TRIES} times (exit {rc})", pytrace=False)
+
+
+def _watched(cmd, workdir, env, timeout, period):
     proc = subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             text=True, env=env)
     samples = []

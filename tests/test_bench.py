@@ -7,11 +7,10 @@ not a timed test."""
 import json
 import math
 import os
-import subprocess
 
 import pytest
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 TINY = ["--strip", "200", "--ncopy", "2", "--nlayer", "1", "--salt", "100", "--cover", "150",
         "--nsettle", "100", "--nwarm", "20", "--nsteps", "100",
@@ -25,7 +24,7 @@ def bench(tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
     cmd = ["bash", str(ROOT / "bench" / "run-bench.sh"), "--lmp", lmp_path(), "--out", str(out),
            *TINY]
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=900,
+    p = run_cmd(cmd, capture_output=True, text=True, timeout=900,
                        env=dict(os.environ, SALTDEM_PYTHON="/usr/bin/python3"))
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
     return out, p.stdout
@@ -133,7 +132,7 @@ def test_pair_cost_reports_every_style_per_interacting_pair(tmp_path):
     granular styles' contacts about 2-4 per disc in a settled pack, the salt's kernel about 20),
     a finite cost per pair and the ratio to stock; no timings asserted."""
     js = tmp_path / "r.json"
-    p = subprocess.run(["/usr/bin/python3", str(ROOT / "bench" / "pair_cost.py"), "--lmp", lmp_path(),
+    p = run_cmd(["/usr/bin/python3", str(ROOT / "bench" / "pair_cost.py"), "--lmp", lmp_path(),
                         "--work", str(tmp_path), "--W", "300", "--H", "150", "--nsteps", "20",
                         "--json", str(js)], capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]

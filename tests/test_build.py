@@ -1,7 +1,6 @@
 """The build: lmp carries USER-SALTDEM and its styles, decks using them run, bad arguments fail."""
-import subprocess
 
-from lmprun import lmp_path
+from lmprun import lmp_path, run_cmd
 
 STYLES = ["saltdem/cohesive", "saltdem/cohesive/omp", "saltdem/viscous", "saltdem/viscous/omp",
           "saltdem/nve", "saltdem/viscosity", "saltdem/fault"]
@@ -30,7 +29,7 @@ run 200
 
 
 def test_help_lists_package_and_styles():
-    out = subprocess.run([lmp_path(), "-h"], capture_output=True, text=True).stdout
+    out = run_cmd([lmp_path(), "-h"], capture_output=True, text=True).stdout
     pkgs = out.split("Installed packages:")[1].split("List of individual style options")[0]
     assert "USER-SALTDEM" in pkgs.split()
     for pkg in ("GRANULAR", "OPENMP"):

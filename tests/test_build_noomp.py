@@ -15,7 +15,7 @@ import subprocess
 
 import pytest
 
-from lmprun import ROOT, check_ok, lmp_path, run_lmp
+from lmprun import ROOT, check_ok, lmp_path, run_lmp, run_cmd
 
 pytestmark = pytest.mark.second_build
 
@@ -57,13 +57,13 @@ def noomp_lmp():
 
 
 def test_styles_without_openmp(noomp_lmp):
-    out = subprocess.run([noomp_lmp, "-h"], capture_output=True, text=True).stdout
+    out = run_cmd([noomp_lmp, "-h"], capture_output=True, text=True).stdout
     assert "USER-SALTDEM" in out and "OPENMP" not in out.split("Installed packages")[1][:400]
     styles = set(re.findall(r"saltdem/[a-z/]+", out))
     assert {"saltdem/cohesive", "saltdem/viscous", "saltdem/nve", "saltdem/fault",
             "saltdem/viscosity", "saltdem/timestep", "saltdem/wall"} <= styles
     assert not [s for s in styles if s.endswith("/omp")], styles
-    main = subprocess.run([lmp_path(), "-h"], capture_output=True, text=True).stdout
+    main = run_cmd([lmp_path(), "-h"], capture_output=True, text=True).stdout
     assert "saltdem/cohesive/omp" in main and "saltdem/nve/omp" in main
 
 

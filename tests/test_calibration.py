@@ -20,13 +20,12 @@ potentials/*.params; docs/validation.md).
 """
 import math
 import re
-import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from lmprun import ROOT, check_ok, lmp_path
+from lmprun import ROOT, check_ok, lmp_path, run_cmd
 # python/ is on the module path through pytest.ini (pythonpath = python)
 from saltdem_post.calibration import cli as calibrate
 from saltdem_post.calibration import fit as calibfit
@@ -267,7 +266,7 @@ def test_params_writer_round_trips(tmp_path):
 
 def run_tool(out, *args, timeout=900):
     cmd = [sys.executable, str(TOOL), "-q", "-o", str(out), "--lmp", lmp_path(), *args]
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    p = run_cmd(cmd, capture_output=True, text=True, timeout=timeout)
     assert p.returncode == 0, p.stdout + p.stderr
     return p
 

@@ -5,7 +5,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 TINY = dict(preset="quick", width=1250, salt=250, cover=500, target=10, f="5 10",
             nsettle=300, rate=1, root=str(ROOT))
@@ -18,7 +18,7 @@ def tiny_run(tmp_path_factory):
            "-echo", "none"]
     for k, v in TINY.items():
         cmd += ["-var", k, *str(v).split()]
-    proc = subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=900,
+    proc = run_cmd(cmd, cwd=wd, capture_output=True, text=True, timeout=900,
                           env=dict(os.environ, OMP_NUM_THREADS="1"))
     return wd, proc
 

@@ -4,12 +4,11 @@ Kinematics are checked against their formulas from positions dumped at full prec
 split runs and two MPI ranks must reproduce an uninterrupted serial run; bad input must give a
 clean LAMMPS error that names the offending item."""
 import math
-import subprocess
 
 import numpy as np
 import pytest
 
-from lmprun import assert_error, check_ok, lmp_path
+from lmprun import assert_error, check_ok, lmp_path, run_cmd
 
 HEAD = """
 units si
@@ -37,7 +36,7 @@ DUMP = "write_dump all custom {} id x y vx vy omegaz modify format float %.17g\n
 
 
 def test_help_lists_the_new_styles():
-    out = subprocess.run([lmp_path(), "-h"], capture_output=True, text=True).stdout
+    out = run_cmd([lmp_path(), "-h"], capture_output=True, text=True).stdout
     fixes = out.split("* Fix styles")[1].split("* Compute styles:")[0].split()
     commands = out.split("* Command styles")[1].split()
     assert "saltdem/keystone" in fixes and "saltdem/tiltwall" in fixes

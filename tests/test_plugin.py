@@ -13,7 +13,7 @@ import subprocess
 
 import pytest
 
-from lmprun import ROOT, check_ok, run_lmp
+from lmprun import ROOT, check_ok, run_lmp, run_cmd
 
 pytestmark = pytest.mark.second_build
 
@@ -40,7 +40,7 @@ def read(path):
 
 def test_stock_lmp_has_no_saltdem(plugin):
     lmp, so = plugin
-    out = subprocess.run([lmp, "-h"], capture_output=True, text=True).stdout
+    out = run_cmd([lmp, "-h"], capture_output=True, text=True).stdout
     packages = out.split("Installed packages:")[1].split("List of individual style options")[0]
     assert {"PLUGIN", "OPENMP", "GRANULAR"} <= set(packages.split())
     styles = out.split("List of individual style options")[1]
@@ -50,7 +50,7 @@ def test_stock_lmp_has_no_saltdem(plugin):
 def test_plugin_registers_every_style(plugin, tmp_path):
     lmp, so = plugin
     (tmp_path / "in.list").write_text(f"plugin load {so}\nplugin list\n")
-    p = subprocess.run([lmp, "-in", "in.list", "-log", "none"], capture_output=True, text=True,
+    p = run_cmd([lmp, "-in", "in.list", "-log", "none"], capture_output=True, text=True,
                        cwd=tmp_path)
     assert p.returncode == 0, p.stdout[-2000:]
     listed = set(re.findall(r"(pair|fix|command) style plugin (\S+)", p.stdout))

@@ -107,11 +107,10 @@ def test_fixed_right_wall_stays(tmp_path):
     (dict(preset="huge"), "preset huge must be full, medium, quick or tiny"),
 ])
 def test_bad_variant_stops(tmp_path, opts, words):
-    import subprocess
-    from lmprun import ROOT, lmp_path
+        from lmprun import ROOT, lmp_path, run_cmd
     cmd = [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-echo", "none", "-var", "root", str(ROOT)]
     opts = dict(dict(preset="tiny"), **opts)
     for k, v in opts.items():
         cmd += ["-var", k, str(v)]
-    proc = subprocess.run(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    proc = run_cmd(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert proc.returncode != 0 and words in proc.stdout, proc.stdout[-2000:]

@@ -6,7 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 from test_scenes import dumps
 
 
@@ -15,7 +15,7 @@ def quick(tmp_path_factory):
     wd = tmp_path_factory.mktemp("quick")
     cmd = [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-var", "preset", "quick",
            "-var", "target", "250", "-var", "f", "50", "100", "200", "250", "-var", "root", str(ROOT), "-log", "log.lammps", "-echo", "none"]
-    proc = subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=1800,
+    proc = run_cmd(cmd, cwd=wd, capture_output=True, text=True, timeout=1800,
                           env=dict(os.environ, OMP_NUM_THREADS="1"))
     assert proc.returncode == 0, (proc.stdout + proc.stderr)[-3000:]
     return wd, proc

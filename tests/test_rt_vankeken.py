@@ -8,13 +8,12 @@ at the analytic Stokes rate (0.0109402 per t_b) within the error measured at thi
 0.943-0.964 over the windows 2-20 to 5-40 t_b), and does not grow at all when the two densities
 are equal."""
 import os
-import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 sys.path.insert(0, str(ROOT / "bench"))
 import rt_vankeken as rt  # noqa: E402
@@ -28,7 +27,7 @@ def run_rt(tmp_path, name, tend=20, **var):
            "-screen", "none", "-var", "name", name, "-var", "n", "20", "-var", "tend", str(tend)]
     for k, v in var.items():
         cmd += ["-var", k, str(v)]
-    proc = subprocess.run(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=900,
+    proc = run_cmd(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=900,
                           env=dict(os.environ, OMP_NUM_THREADS="1"))
     assert proc.returncode == 0, (tmp_path / f"log.{name}").read_text()[-3000:]
     return rt.read_run(tmp_path / f"{name}.txt")

@@ -6,11 +6,10 @@ reported on 2 and 4 ranks and grow with P for strips.  No wall time is asserted.
 import json
 import math
 import os
-import subprocess
 
 import pytest
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 TINY = ["--strip", "200", "--ncopy", "2", "--nlayer", "1", "--salt", "100", "--cover", "150",
         "--nsettle", "100", "--nwarm", "20", "--nsteps", "50", "--styles", "saltdem",
@@ -25,7 +24,7 @@ PMAX, NODE = 6, 4
 def model(tmp_path_factory):
     out = tmp_path_factory.mktemp("scaling")
     env = dict(os.environ, SALTDEM_PYTHON="/usr/bin/python3")
-    p = subprocess.run(["bash", str(ROOT / "bench" / "run-bench.sh"), "--lmp", lmp_path(),
+    p = run_cmd(["bash", str(ROOT / "bench" / "run-bench.sh"), "--lmp", lmp_path(),
                         "--out", str(out), *TINY], capture_output=True, text=True, timeout=900,
                        env=env)
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
@@ -34,7 +33,7 @@ def model(tmp_path_factory):
            "--pmax", str(PMAX), "--node", str(NODE), "--scene-dump", str(out / "bench_settled.dump"),
            "--scene-size", "400", "100", "150",
            "--one-core-step", "0.0142", "--two-rank-step", "0.0083"]
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    p = run_cmd(cmd, capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
     res = json.loads((out / "results.json").read_text())
     return json.loads((out / "scaling-model.json").read_text()), res, p.stdout

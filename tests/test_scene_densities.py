@@ -4,12 +4,11 @@ defaults leave the paper's scene as it was (tiny Expt 1)."""
 import math
 import os
 import re
-import subprocess
 
 import numpy as np
 import pytest
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 
 def run_expt1(wd, **var):
@@ -18,11 +17,11 @@ def run_expt1(wd, **var):
     for k, v in var.items():
         cmd += ["-var", k, str(v)]
     env = dict(os.environ, OMP_NUM_THREADS="1")
-    proc = subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=900, env=env)
+    proc = run_cmd(cmd, cwd=wd, capture_output=True, text=True, timeout=900, env=env)
     log = (wd / "log.lammps").read_text()
     assert proc.returncode == 0, log[-3000:]
     # the discs' masses from the last restart file, as a data file
-    proc = subprocess.run([lmp_path(), "-restart2data", "expt1.restart.b", "r.data"], cwd=wd,
+    proc = run_cmd([lmp_path(), "-restart2data", "expt1.restart.b", "r.data"], cwd=wd,
                           capture_output=True, text=True, timeout=300, env=env)
     assert proc.returncode == 0, proc.stdout[-3000:]
     return log, read_atoms(wd / "r.data")

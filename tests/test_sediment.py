@@ -20,7 +20,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from lmprun import ROOT, assert_error, check_ok, lmp_path, run_lmp
+from lmprun import ROOT, assert_error, check_ok, lmp_path, run_lmp, run_cmd
 
 RMIN, RMAX = 20.0, 30.0
 TOL = 0.01                    # the fix's default overlap tolerance (fraction of the smaller radius)
@@ -612,7 +612,7 @@ def run_scene(deck, wd, **var):
            "-var", "root", str(ROOT)]
     for k, v in var.items():
         cmd += ["-var", k, *str(v).split()]
-    return subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=900,
+    return run_cmd(cmd, cwd=wd, capture_output=True, text=True, timeout=900,
                           env=dict(os.environ, OMP_NUM_THREADS="1"))
 
 

@@ -9,12 +9,11 @@ interface with its own, smaller, gradient.  Before the volume-weighted sums a li
 counted a heavy neighbour's mass as if it were light: the light layer stood 3.5-4.4e6 Pa (15-17 %)
 above the hydrostatic pressure; now within 1 %."""
 import os
-import subprocess
 import sys
 
 import numpy as np
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 sys.path.insert(0, str(ROOT / "bench"))
 import rt_vankeken as rt  # noqa: E402
@@ -30,7 +29,7 @@ def test_two_density_column_is_hydrostatic(tmp_path):
            "-screen", "none", "-var", "name", "hs", "-var", "n", str(N), "-var", "amp", "0",
            "-var", "gravity", "full", "-var", "wall", "half", "-var", "S", "1",
            "-var", "tend", "15", "-var", "dump", "1", "-var", "K", str(K)]
-    proc = subprocess.run(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=600,
+    proc = run_cmd(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=600,
                           env=dict(os.environ, OMP_NUM_THREADS="1"))
     assert proc.returncode == 0, (tmp_path / "log.hs").read_text()[-3000:]
     head, t, vrms, _, _ = rt.read_run(tmp_path / "hs.txt")

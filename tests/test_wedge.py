@@ -4,12 +4,11 @@ writes the epochs to its frames and resumes from its restart file."""
 import math
 import os
 import re
-import subprocess
 
 import numpy as np
 import pytest
 
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 EPOCH = r"fix saltdem/sediment sed: epoch (\d+) at step (\d+): deposited (\d+) discs \(([-+.\deE]+) m\^2\) " \
         r"below base level ([-+.\deE]+) m in x ([-+.\deE]+) to ([-+.\deE]+) m"
@@ -20,7 +19,7 @@ def run_deck(wd, **var):
            "-var", "root", str(ROOT)]
     for k, v in var.items():
         cmd += ["-var", k, *str(v).split()]
-    return subprocess.run(cmd, cwd=wd, capture_output=True, text=True, timeout=900,
+    return run_cmd(cmd, cwd=wd, capture_output=True, text=True, timeout=900,
                           env=dict(os.environ, OMP_NUM_THREADS="1"))
 
 
@@ -102,7 +101,7 @@ def test_series_runner_wedge(tmp_path):
     import shutil
     series = ROOT / "out" / "wedge_tiny"
     shutil.rmtree(series, ignore_errors=True)
-    r = subprocess.run(["bash", str(ROOT / "examples" / "run-series.sh"), "wedge", "tiny"],
+    r = run_cmd(["bash", str(ROOT / "examples" / "run-series.sh"), "wedge", "tiny"],
                        capture_output=True, text=True, timeout=900,
                        env=dict(os.environ, OMP_NUM_THREADS="1"))
     assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]

@@ -1,0 +1,195 @@
+/* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
+
+   saltdem/read_restart FILE [checksum required|optional] [timeout SECONDS]:
+   read_restart FILE after two guards.  The file must match its checksum
+   file FILE.sha256 (written by fix saltdem/checksum); a mismatch, a missing
+   file or (with checksum required) a missing checksum is an error that
+   names the other file of an .a/.b pair.  A watchdog ends the process with
+   an error if reading takes longer than the timeout: LAMMPS's reader has no
+   checks of its own, and a damaged per-atom record can loop forever
+   (default: 60 s plus 1 s per 10 MB of file; 0: no watchdog).
+------------------------------------------------------------------------- */
+
+#include "saltdem_read_restart.h"
+
+#include "comm.h"
+#include "error.h"
+#include "input.h"
+#include "platform.h"
+#include "saltdem_sha256.h"
+#include "utils.h"
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <unistd.h>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+char watchdog_message[1024];
+size_t watchdog_length = 0;
+int watchdog_fd[2] = {-1, -1};    // screen and log file
+
+extern "C" void watchdog_expired(int)
+{
+  // only async-signal-safe calls here
+  for (int fd : watchdog_fd)
+    if (fd >= 0 && write(fd, watchdog_message, watchdog_length) < 0) break;
+  _exit(1);
+}
+
+// the other file of a restart pair written as NAME.a / NAME.b
+std::string other_of_pair(const std::string &file)
+{
+  const size_t n = file.size();
+  if (n < 2 || file[n - 2] != '.') return "";
+  if (file[n - 1] == 'a') return file.substr(0, n - 1) + "b";
+  if (file[n - 1] == 'b') return file.substr(0, n - 1) + "a";
+  return "";
+}
+
+// what to do instead, for an error message: the other file of the pair if it checks out
+std::string advice(const std::string &file)
+{
+  const std::string other = other_of_pair(file);
+  if (other.empty() || !platform::file_is_readable(other))
+    return "start the run again from its beginning (no other restart file of a pair is there)";
+  const std::string want = SaltDEM::read_checksum(other);
+  if (want.empty())
+    return fmt::format("resume from the other file of the pair, {} (it has no checksum file to "
+                       "verify it)",
+                       other);
+  if (want == SaltDEM::sha256_file(other))
+    return fmt::format("resume from the other file of the pair, {} (its checksum matches)", other);
+  return fmt::format("the other file of the pair, {}, fails its checksum too: start the run "
+                     "again from its beginning",
+                     other);
+}
+
+}    // namespace
+
+void SaltdemReadRestart::command(int narg, char **arg)
+{
+  if (narg < 1)
+    error->all(FLERR,
+               "Illegal saltdem/read_restart command: saltdem/read_restart FILE "
+               "[checksum required|optional] [timeout SECONDS]");
+  const std::string file = arg[0];
+  int required = 0;
+  double timeout = -1.0;
+  for (int iarg = 1; iarg < narg; iarg += 2) {
+    if (iarg + 1 >= narg)
+      error->all(FLERR, "saltdem/read_restart: keyword {} needs a value", arg[iarg]);
+    if (strcmp(arg[iarg], "checksum") == 0) {
+      if (strcmp(arg[iarg + 1], "required") == 0)
+        required = 1;
+      else if (strcmp(arg[iarg + 1], "optional") == 0)
+        required = 0;
+      else
+        error->all(FLERR, "saltdem/read_restart: checksum {} must be required or optional",
+                   arg[iarg + 1]);
+    } else if (strcmp(arg[iarg], "timeout") == 0) {
+      timeout = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(timeout >= 0.0 && timeout <= 1e6))
+        error->all(FLERR, "saltdem/read_restart: timeout {} s must be in [0, 1e6] (0: none)",
+                   arg[iarg + 1]);
+    } else
+      error->all(FLERR, "saltdem/read_restart: unknown keyword {} (checksum or timeout)",
+                 arg[iarg]);
+  }
+  if (strchr(file.c_str(), '%') || strstr(file.c_str(), ".mpiio"))
+    error->all(FLERR,
+               "saltdem/read_restart: {} is a multi-file or MPI-IO restart; use read_restart",
+               file);
+
+  // rank 0 checks the file: 0 ok, 1 missing, 2 mismatch, 3 no checksum, 4 bad checksum file
+  int status = 0;
+  double bytes = 0.0;
+  if (comm->me == 0) {
+    if (!platform::file_is_readable(file)) {
+      status = 1;
+    } else {
+      FILE *fp = fopen(file.c_str(), "rb");
+      if (fp && fseek(fp, 0, SEEK_END) == 0) bytes = (double) ftell(fp);
+      if (fp) fclose(fp);
+      const std::string want = SaltDEM::read_checksum(file);
+      if (want.empty())
+        status = 3;
+      else if (want == "?")
+        status = 4;
+      else if (want != SaltDEM::sha256_file(file))
+        status = 2;
+    }
+  }
+  MPI_Bcast(&status, 1, MPI_INT, 0, world);
+  MPI_Bcast(&bytes, 1, MPI_DOUBLE, 0, world);
+  const std::string sum = SaltDEM::checksum_path(file);
+  if (status == 1)
+    error->all(FLERR, "saltdem/read_restart: cannot read {}; {}", file, advice(file));
+  if (status == 2)
+    error->all(FLERR,
+               "saltdem/read_restart: {} does not match its checksum {} (damaged, or cut short "
+               "while written); {}",
+               file, sum, advice(file));
+  if (status == 4)
+    error->all(FLERR, "saltdem/read_restart: checksum file {} is damaged; {}", sum, advice(file));
+  if (status == 3) {
+    if (required)
+      error->all(FLERR, "saltdem/read_restart: {} has no checksum file {} (checksum required); {}",
+                 file, sum, advice(file));
+    if (comm->me == 0)
+      error->warning(FLERR, "saltdem/read_restart: {} has no checksum file {}: not verified", file,
+                     sum);
+  }
+
+  if (timeout < 0.0) timeout = 60.0 + bytes / 1e7;
+  struct sigaction act, old;
+  if (timeout > 0.0) {
+    const std::string msg = fmt::format(
+        "ERROR: saltdem/read_restart: reading {} did not finish within {:.0f} s: the file is "
+        "damaged; {}\n",
+        file, timeout, advice(file));
+    watchdog_length = std::min(msg.size(), sizeof(watchdog_message));
+    memcpy(watchdog_message, msg.data(), watchdog_length);
+    // the handler ends the process without flushing: what is buffered goes out now
+    watchdog_fd[0] = watchdog_fd[1] = -1;
+    if (comm->me == 0) {
+      if (screen) {
+        fflush(screen);
+        watchdog_fd[0] = fileno(screen);
+      }
+      if (logfile) {
+        fflush(logfile);
+        watchdog_fd[1] = fileno(logfile);
+      }
+    }
+    memset(&act, 0, sizeof(act));
+    act.sa_handler = watchdog_expired;
+    sigemptyset(&act.sa_mask);
+    sigaction(SIGALRM, &act, &old);
+    alarm((unsigned int) (timeout + 0.999));
+  }
+  input->one("read_restart " + file);
+  if (timeout > 0.0) {
+    alarm(0);
+    sigaction(SIGALRM, &old, nullptr);
+  }
+}

@@ -109,3 +109,34 @@ def test_clang_format():
     r = subprocess.run([exe, "--dry-run", "--Werror", *files], cwd=ROOT, capture_output=True,
                        text=True)
     assert r.returncode == 0, r.stderr[-3000:]
+
+
+# ---- the repository: no large files in git, user docs as LAMMPS's doc rules ask ----
+
+MAX_TRACKED_BYTES = 1 << 20    # 1 MB: run data (restarts, dumps) lives outside git
+
+
+def tracked_files():
+    """The repository's tracked files (relative paths), or a skip outside a git checkout."""
+    if shutil.which("git") is None:
+        pytest.skip("git is not installed")
+    r = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True)
+    if r.returncode != 0:
+        pytest.skip(f"not a git checkout: {r.stderr.strip()[:200]}")
+    return [f for f in r.stdout.split("\0") if f]
+
+
+def oversized(sizes, limit=MAX_TRACKED_BYTES):
+    """The (path, bytes) pairs over the limit, largest first."""
+    return sorted(((f, n) for f, n in sizes if n > limit), key=lambda fn: -fn[1])
+
+
+def test_no_tracked_file_over_1mb():
+    """Every tracked file is at most 1 MB: restart files and dumps of long runs are kept outside
+    git (bench/segments/README.md says where and how to regenerate them)."""
+    files = tracked_files()
+    assert files
+    sizes = [(f, (ROOT / f).stat().st_size) for f in files if (ROOT / f).is_file()]
+    big = oversized(sizes)
+    assert not big, (f"{len(big)} tracked file(s) over {MAX_TRACKED_BYTES} bytes: "
+                     + ", ".join(f"{f} ({n} bytes)" for f, n in big))

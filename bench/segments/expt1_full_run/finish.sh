@@ -4,7 +4,8 @@
 #   bash bench/segments/expt1_full_run/finish.sh RUN_DIR [--splice]
 #
 # RUN_DIR: where the segments ran (the README's out/full); its frames dump.expt1.STEP.txt and
-# the ones kept here (frames/*.gz, unpacked where RUN_DIR lacks them) are read.  Writes the
+# the kept ones (expt1_full_run/frames/*.gz under $SALTDEM_SEGMENTS, default
+# ~/.cache/saltdem/segments: not in git, the README; unpacked where RUN_DIR lacks them) are read.  Writes the
 # gallery's run directory out/gallery_full/expt1_full (links to the frames, figures/,
 # outcomes/, cmd.txt, wall.txt: the sum of wall_segments.txt here).  With --splice the
 # gallery's expt1_full row and section in docs/gallery.md are replaced by this run's
@@ -19,11 +20,19 @@ py=${PYTHON:-/usr/bin/python3}
 post="$root/python/saltdem-post"
 out="$root/out/gallery_full/expt1_full"
 
+segs=${SALTDEM_SEGMENTS:-${SALTDEM_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/saltdem}/segments}
 mkdir -p "$out"
-for gz in "$here"/frames/dump.expt1.*.txt.gz; do
-  f=$(basename "$gz" .gz)
-  [ -f "$run/$f" ] || gunzip -c "$gz" > "$run/$f"
-done
+if compgen -G "$segs/expt1_full_run/frames/dump.expt1.*.txt.gz" > /dev/null; then
+  for gz in "$segs"/expt1_full_run/frames/dump.expt1.*.txt.gz; do
+    f=$(basename "$gz" .gz)
+    [ -f "$run/$f" ] || gunzip -c "$gz" > "$run/$f"
+  done
+else
+  echo "finish: no kept frames in $segs/expt1_full_run/frames (they are not in git; set" \
+       "SALTDEM_SEGMENTS): using only the frames in $run" >&2
+fi
+compgen -G "$run/dump.expt1.*.txt" > /dev/null || {
+  echo "finish: no frames dump.expt1.*.txt in $run: run the full Expt 1 first (the README)" >&2; exit 1; }
 rm -f "$out"/dump.expt1.*.txt
 ln -s "$run"/dump.expt1.*.txt "$out"/
 echo "mpirun -np 2 lmp -in examples/expt1.in -var preset full -var restart_disp 25" > "$out/cmd.txt"

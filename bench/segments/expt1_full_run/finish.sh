@@ -8,7 +8,8 @@
 # ~/.cache/saltdem/segments: not in git, the README; unpacked where RUN_DIR lacks them) are read.  Writes the
 # gallery's run directory out/gallery_full/expt1_full (links to the frames, figures/,
 # outcomes/, cmd.txt, wall.txt: the sum of wall_segments.txt here).  With --splice the
-# gallery's expt1_full row and section in docs/gallery.md are replaced by this run's
+# gallery's expt1_full row and sections in docs/gallery.md and docs/gallery/runs.md are replaced
+# by this run's (tools/docs/gallery_page.py --splice)
 # (the notes' '## expt1_full' lines, docs/gallery/notes.md, say what it shows: edit them
 # first).  Run from anywhere; Python: /usr/bin/python3 or $PYTHON.
 set -euo pipefail
@@ -44,21 +45,6 @@ awk '$1 ~ /^[0-9]+$/ {s += $1} END {print s}' "$here/wall_segments.txt" > "$out/
 echo "finish: $out (wall $(cat "$out/wall.txt") s)"
 [ "$splice" = --splice ] || exit 0
 
-# one-run page beside the gallery (so that its figure path is the gallery's), then its row and
-# section replace the old ones
-one="$root/docs/.gallery_expt1_full.md"
-"$py" "$post" gallery "$out" --notes "$root/docs/gallery/notes.md" -o "$one"
-"$py" - "$one" "$root/docs/gallery.md" <<'EOF'
-import re, sys
-one, page = open(sys.argv[1]).read(), open(sys.argv[2]).read()
-row = re.compile(r"^\| \[expt1_full\]\(#expt1_full\) \|.*$", re.M)
-sec = re.compile(r"^## expt1_full\n.*?(?=^## |\Z)", re.M | re.S)
-new_row, new_sec = row.search(one).group(0), sec.search(one).group(0)
-if not row.search(page) or not sec.search(page):
-    sys.exit("finish: docs/gallery.md has no expt1_full row or section to replace")
-page = row.sub(lambda _: new_row, page, count=1)
-page = sec.sub(lambda _: new_sec, page, count=1)
-open(sys.argv[2], "w").write(page)
-print("finish: docs/gallery.md's expt1_full row and section replaced")
-EOF
-rm -f "$one"
+# its row and section in docs/gallery.md and its section in docs/gallery/runs.md replace the old
+"$py" "$root/tools/docs/gallery_page.py" "$out" --notes "$root/docs/gallery/notes.md" \
+    -o "$root/docs/gallery.md" --splice

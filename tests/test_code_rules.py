@@ -140,3 +140,122 @@ def test_no_tracked_file_over_1mb():
     big = oversized(sizes)
     assert not big, (f"{len(big)} tracked file(s) over {MAX_TRACKED_BYTES} bytes: "
                      + ", ".join(f"{f} ({n} bytes)" for f, n in big))
+
+
+# the user pages: what a user reads (the logs of how a number came about are in docs/notes/)
+def user_pages():
+    return sorted([*ROOT.glob("docs/*.md"), *ROOT.glob("docs/*.rst"), ROOT / "README.md",
+                   ROOT / "examples" / "README.md"])
+
+
+ISSUE_NUMBER = re.compile(r"\bissues? #?\d+|(?<![\w&/])#\d+\b|\(issue\b", re.I)
+
+
+def issue_numbers(text):
+    """Lines that cite an issue ('issue 16', 'issues 16 and 18', '#16'), outside code blocks,
+    inline code and link targets."""
+    bad, code = [], False
+    for k, line in enumerate(text.splitlines(), 1):
+        if line.lstrip().startswith(("```", "~~~")):
+            code = not code
+            continue
+        if code:
+            continue
+        prose = re.sub(r"\]\([^)]*\)", "]", re.sub(r"`[^`]*`", "", line))    # no link targets
+        if ISSUE_NUMBER.search(prose):
+            bad.append(f"{k}: {line.strip()[:100]}")
+    return bad
+
+
+def test_user_pages_cite_no_issue_numbers():
+    """A user page says what is, not which issue made it so (the history is in docs/notes/)."""
+    pages = user_pages()
+    assert len(pages) > 15
+    bad = {p.relative_to(ROOT).as_posix(): b for p in pages if (b := issue_numbers(p.read_text()))}
+    assert not bad, bad
+
+
+# British spellings LAMMPS's docs do not use (American English); whole words, any case
+BRITISH = ("behaviour", "behaviours", "modelling", "modelled", "colour", "colours", "centre",
+           "centres", "centred", "metre", "metres", "neighbour", "neighbours", "neighbouring",
+           "neighbourhood", "licence",
+           "favour", "analyse", "analysed", "normalise", "normalised", "initialise", "initialised",
+           "discretisation", "localised", "localisation", "optimise", "optimised", "recognise",
+           "minimise", "minimised", "parametrised", "parameterised", "stabilise", "organise",
+           "grey", "labelled", "travelled", "cancelled")
+BRITISH_RE = re.compile(r"\b(" + "|".join(BRITISH) + r")\b", re.I)
+
+
+def rst_problems(text):
+    """Non-ASCII characters and British spellings in a .rst page, as 'line: what'."""
+    bad = []
+    for k, line in enumerate(text.splitlines(), 1):
+        odd = sorted({c for c in line if ord(c) > 127})
+        if odd:
+            bad.append(f"{k}: non-ASCII {''.join(odd)!r}")
+        bad += [f"{k}: British '{m}'" for m in BRITISH_RE.findall(line)]
+    return bad
+
+
+def test_rst_pages_are_ascii_and_american():
+    """The style pages (docs/*.rst) follow LAMMPS's doc rules: ASCII only, American English."""
+    pages = sorted(ROOT.glob("docs/*.rst"))
+    assert len(pages) >= 10
+    bad = {p.name: b for p in pages if (b := rst_problems(p.read_text()))}
+    assert not bad, bad
+
+
+LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
+
+
+def prose_lines(text):
+    """(line number, line) outside code blocks, inline code removed."""
+    code = False
+    for k, line in enumerate(text.splitlines(), 1):
+        if line.lstrip().startswith(("```", "~~~")):
+            code = not code
+            continue
+        if not code:
+            yield k, re.sub(r"`[^`]*`", "", line)
+
+
+def heading_anchors(text):
+    """The anchors GitHub gives a page's headings (lower case, punctuation dropped, spaces to
+    hyphens, -1, -2, ... for repeats)."""
+    out, seen = set(), {}
+    for _, line in prose_lines(text.replace("`", "")):
+        m = re.match(r"#{1,6} (.*)", line)
+        if m:
+            slug = re.sub(r"[^\w\- ]", "", m.group(1).strip().lower()).replace(" ", "-")
+            n = seen.get(slug, 0)
+            seen[slug] = n + 1
+            out.add(slug if n == 0 else f"{slug}-{n}")
+    return out
+
+
+def broken_links(page):
+    """The relative links and images of a markdown page whose file or heading does not exist."""
+    bad = []
+    for k, line in prose_lines(page.read_text()):
+        for target in LINK.findall(line):
+            if re.match(r"[a-z]+:", target):
+                continue
+            path, _, frag = target.partition("#")
+            dest = (page.parent / path).resolve() if path else page
+            if not dest.exists():
+                bad.append(f"{k}: {target} (no such file)")
+            elif frag and dest.suffix == ".md" and frag not in heading_anchors(dest.read_text()):
+                bad.append(f"{k}: {target} (no such heading)")
+    return bad
+
+
+def test_docs_links_resolve():
+    """Every relative link and image of the markdown docs points at a file that exists, and at a
+    heading of it where it names one.  docs/gallery/intro.md and beyond.md are parts of
+    docs/gallery.md (tools/docs/gallery_page.py puts them there) and use its links."""
+    parts = {"intro.md", "beyond.md"}
+    pages = [p for p in ROOT.glob("docs/**/*.md") if not (p.parent.name == "gallery" and p.name in parts)]
+    pages += [ROOT / "README.md", ROOT / "examples" / "README.md", *ROOT.glob("bench/**/README.md")]
+    assert len(pages) > 10
+    bad = {p.relative_to(ROOT).as_posix(): b for p in pages if (b := broken_links(p))}
+    assert not bad, bad

@@ -61,13 +61,41 @@ def deck_args(preset, restart, extra, ranks=1):
             "-var", "restart", str(restart)] + extra
 
 
+def segments_dirs():
+    """Where the kept segments' frames and restart files may lie (they are not in git,
+    bench/segments/README.md): $SALTDEM_SEGMENTS, bench/segments itself, and the cache
+    ($SALTDEM_CACHE or ~/.cache/saltdem, as for the LAMMPS build, then segments/)."""
+    xdg = pathlib.Path(os.environ.get("XDG_CACHE_HOME", pathlib.Path.home() / ".cache"))
+    cache = pathlib.Path(os.environ.get("SALTDEM_CACHE", xdg / "saltdem"))
+    dirs = [os.environ.get("SALTDEM_SEGMENTS"), ROOT / "bench" / "segments", cache / "segments"]
+    return [pathlib.Path(d) for d in dirs if d]
+
+
+def find_kept(rel, what):
+    """A kept file by its path relative to bench/segments (e.g. paper_100to150m/start/dump...):
+    the first of segments_dirs() that holds it; otherwise exit saying which file is missing and
+    how to get it back."""
+    for d in segments_dirs():
+        if (d / rel).exists():
+            return d / rel
+    sys.exit(f"expt1_segment: {what} {rel} is missing (looked in "
+             f"{', '.join(str(d) for d in segments_dirs())}): the kept segments' frames and restart "
+             f"files are not in git; put them there (or set SALTDEM_SEGMENTS to their folder) or "
+             f"regenerate them as bench/segments/README.md says")
+
+
 def load_done(done):
     """A segment's done.json; its dump paths may be relative to the work directory (a reference
-    segment kept in bench/segments/, copied into the work directory, is not run again)."""
+    segment kept in bench/segments/, copied into the work directory, is not run again).  A dump
+    that the work directory lacks is looked up among the kept segments (find_kept), under
+    paper_100to150m/."""
     res = json.loads(done.read_text())
     for k in ("dump", "first", "last"):
         if k in res:
-            res[k] = str((done.parent.parent / res[k]).resolve())
+            p = (done.parent.parent / res[k]).resolve()
+            if not p.exists() and not pathlib.Path(res[k]).is_absolute():
+                p = find_kept(pathlib.Path("paper_100to150m") / res[k], f"the frame of {done}:")
+            res[k] = str(p)
     return res
 
 
@@ -145,6 +173,10 @@ def main(argv=None):
     a = ap.parse_args(argv)
     work = pathlib.Path(a.work).resolve()
     restart = a.restart.resolve()
+    if not restart.exists():
+        sys.exit(f"expt1_segment: no restart file {a.restart}: the full Expt 1 restart at 100.36 m is "
+                 f"not in git; gunzip the kept expt1_full_100m.restart.gz (SALTDEM_SEGMENTS, or "
+                 f"~/.cache/saltdem/segments) or regenerate it as bench/segments/README.md says")
     segs = {}
     for s in a.seg:
         name, dt, S, th, *sub = s.split(":")

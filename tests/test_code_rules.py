@@ -109,3 +109,153 @@ def test_clang_format():
     r = subprocess.run([exe, "--dry-run", "--Werror", *files], cwd=ROOT, capture_output=True,
                        text=True)
     assert r.returncode == 0, r.stderr[-3000:]
+
+
+# ---- the repository: no large files in git, user docs as LAMMPS's doc rules ask ----
+
+MAX_TRACKED_BYTES = 1 << 20    # 1 MB: run data (restarts, dumps) lives outside git
+
+
+def tracked_files():
+    """The repository's tracked files (relative paths), or a skip outside a git checkout."""
+    if shutil.which("git") is None:
+        pytest.skip("git is not installed")
+    r = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True)
+    if r.returncode != 0:
+        pytest.skip(f"not a git checkout: {r.stderr.strip()[:200]}")
+    return [f for f in r.stdout.split("\0") if f]
+
+
+def oversized(sizes, limit=MAX_TRACKED_BYTES):
+    """The (path, bytes) pairs over the limit, largest first."""
+    return sorted(((f, n) for f, n in sizes if n > limit), key=lambda fn: -fn[1])
+
+
+def test_no_tracked_file_over_1mb():
+    """Every tracked file is at most 1 MB: restart files and dumps of long runs are kept outside
+    git (bench/segments/README.md says where and how to regenerate them)."""
+    files = tracked_files()
+    assert files
+    sizes = [(f, (ROOT / f).stat().st_size) for f in files if (ROOT / f).is_file()]
+    big = oversized(sizes)
+    assert not big, (f"{len(big)} tracked file(s) over {MAX_TRACKED_BYTES} bytes: "
+                     + ", ".join(f"{f} ({n} bytes)" for f, n in big))
+
+
+# the user pages: what a user reads (the logs of how a number came about are in docs/notes/)
+def user_pages():
+    return sorted([*ROOT.glob("docs/*.md"), *ROOT.glob("docs/*.rst"), ROOT / "README.md",
+                   ROOT / "examples" / "README.md"])
+
+
+ISSUE_NUMBER = re.compile(r"\bissues? #?\d+|(?<![\w&/])#\d+\b|\(issue\b", re.I)
+
+
+def issue_numbers(text):
+    """Lines that cite an issue ('issue 16', 'issues 16 and 18', '#16'), outside code blocks,
+    inline code and link targets."""
+    bad, code = [], False
+    for k, line in enumerate(text.splitlines(), 1):
+        if line.lstrip().startswith(("```", "~~~")):
+            code = not code
+            continue
+        if code:
+            continue
+        prose = re.sub(r"\]\([^)]*\)", "]", re.sub(r"`[^`]*`", "", line))    # no link targets
+        if ISSUE_NUMBER.search(prose):
+            bad.append(f"{k}: {line.strip()[:100]}")
+    return bad
+
+
+def test_user_pages_cite_no_issue_numbers():
+    """A user page says what is, not which issue made it so (the history is in docs/notes/)."""
+    pages = user_pages()
+    assert len(pages) > 15
+    bad = {p.relative_to(ROOT).as_posix(): b for p in pages if (b := issue_numbers(p.read_text()))}
+    assert not bad, bad
+
+
+# British spellings LAMMPS's docs do not use (American English); whole words, any case
+BRITISH = ("behaviour", "behaviours", "modelling", "modelled", "colour", "colours", "centre",
+           "centres", "centred", "metre", "metres", "neighbour", "neighbours", "neighbouring",
+           "neighbourhood", "licence",
+           "favour", "analyse", "analysed", "normalise", "normalised", "initialise", "initialised",
+           "discretisation", "localised", "localisation", "optimise", "optimised", "recognise",
+           "minimise", "minimised", "parametrised", "parameterised", "stabilise", "organise",
+           "grey", "labelled", "travelled", "cancelled")
+BRITISH_RE = re.compile(r"\b(" + "|".join(BRITISH) + r")\b", re.I)
+
+
+def rst_problems(text):
+    """Non-ASCII characters and British spellings in a .rst page, as 'line: what'."""
+    bad = []
+    for k, line in enumerate(text.splitlines(), 1):
+        odd = sorted({c for c in line if ord(c) > 127})
+        if odd:
+            bad.append(f"{k}: non-ASCII {''.join(odd)!r}")
+        bad += [f"{k}: British '{m}'" for m in BRITISH_RE.findall(line)]
+    return bad
+
+
+def test_rst_pages_are_ascii_and_american():
+    """The style pages (docs/*.rst) follow LAMMPS's doc rules: ASCII only, American English."""
+    pages = sorted(ROOT.glob("docs/*.rst"))
+    assert len(pages) >= 10
+    bad = {p.name: b for p in pages if (b := rst_problems(p.read_text()))}
+    assert not bad, bad
+
+
+LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
+
+
+def prose_lines(text):
+    """(line number, line) outside code blocks, inline code removed."""
+    code = False
+    for k, line in enumerate(text.splitlines(), 1):
+        if line.lstrip().startswith(("```", "~~~")):
+            code = not code
+            continue
+        if not code:
+            yield k, re.sub(r"`[^`]*`", "", line)
+
+
+def heading_anchors(text):
+    """The anchors GitHub gives a page's headings (lower case, punctuation dropped, spaces to
+    hyphens, -1, -2, ... for repeats)."""
+    out, seen = set(), {}
+    for _, line in prose_lines(text.replace("`", "")):
+        m = re.match(r"#{1,6} (.*)", line)
+        if m:
+            slug = re.sub(r"[^\w\- ]", "", m.group(1).strip().lower()).replace(" ", "-")
+            n = seen.get(slug, 0)
+            seen[slug] = n + 1
+            out.add(slug if n == 0 else f"{slug}-{n}")
+    return out
+
+
+def broken_links(page):
+    """The relative links and images of a markdown page whose file or heading does not exist."""
+    bad = []
+    for k, line in prose_lines(page.read_text()):
+        for target in LINK.findall(line):
+            if re.match(r"[a-z]+:", target):
+                continue
+            path, _, frag = target.partition("#")
+            dest = (page.parent / path).resolve() if path else page
+            if not dest.exists():
+                bad.append(f"{k}: {target} (no such file)")
+            elif frag and dest.suffix == ".md" and frag not in heading_anchors(dest.read_text()):
+                bad.append(f"{k}: {target} (no such heading)")
+    return bad
+
+
+def test_docs_links_resolve():
+    """Every relative link and image of the markdown docs points at a file that exists, and at a
+    heading of it where it names one.  docs/gallery/intro.md and beyond.md are parts of
+    docs/gallery.md (tools/docs/gallery_page.py puts them there) and use its links."""
+    parts = {"intro.md", "beyond.md"}
+    pages = [p for p in ROOT.glob("docs/**/*.md") if not (p.parent.name == "gallery" and p.name in parts)]
+    pages += [ROOT / "README.md", ROOT / "examples" / "README.md", *ROOT.glob("bench/**/README.md")]
+    assert len(pages) > 10
+    bad = {p.relative_to(ROOT).as_posix(): b for p in pages if (b := broken_links(p))}
+    assert not bad, bad

@@ -353,19 +353,6 @@ def _say_outcome(r: dict) -> None:
          f"cover ux thirds {ux} m; interface relief {r['interface']['relief_m'] or 0:.0f} m")
 
 
-def cmd_gallery(args) -> dict:
-    from .gallery import GalleryRun, gallery_markdown, read_notes
-    runs = [GalleryRun.load(p) for p in args.runs]
-    page_dir = os.path.dirname(os.path.abspath(args.out))
-    img = args.img or os.path.join(page_dir, "img", "gallery")
-    intro = open(args.intro).read() if args.intro else ""
-    text = gallery_markdown(runs, read_notes(args.notes), img, page_dir, intro)
-    with open(args.out, "w") as fh:
-        fh.write(text)
-    _say(f"gallery: {len(runs)} run(s) -> {args.out} (figures in {img})")
-    return {"runs": [r.name for r in runs], "page": args.out}
-
-
 def cmd_outcomes(args) -> dict:
     from .outcomes import frame_outcomes, outcomes_markdown
     paths = expand_paths(args.dumps)
@@ -449,15 +436,6 @@ def _parser() -> argparse.ArgumentParser:
         return s
 
     add("info", cmd_info, [common], "frames, columns, box, materials and disc sizes of the dumps")
-    s = sub.add_parser("gallery", help="docs/gallery.md from run directories (examples/run-series.sh)",
-                       description="docs/gallery.md from run directories: figure, wall time, outcomes, "
-                                   "the paper's statements beside a person's notes")
-    s.set_defaults(func=cmd_gallery)
-    s.add_argument("runs", nargs="+", help="run directories (NAME/ with figures/, outcomes/, wall.txt)")
-    s.add_argument("-o", "--out", default="docs/gallery.md", help="the page (default %(default)s)")
-    s.add_argument("--img", default=None, help="figure copies (default: img/gallery beside the page)")
-    s.add_argument("--notes", help="notes file: '## NAME' sections, one '- ' line per paper statement")
-    s.add_argument("--intro", help="a markdown file put at the top of the page")
     add("fault", cmd_fault, [common, fx], "fault displacement of every frame from the basement discs")
 
     s = add("strain", cmd_strain, [common, frames, nb],

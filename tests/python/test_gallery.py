@@ -1,14 +1,15 @@
-"""``saltdem-post gallery``: run names map to the paper's scenes, a person's notes sit beside the
-paper's statements, and a run directory of examples/run-series.sh becomes a section of the page."""
+"""The gallery's builder (tools/docs/gallery_page.py, not installed): run names map to the paper's
+scenes, a person's notes sit beside the paper's statements, a run directory of
+examples/run-series.sh becomes a section of the page and of its companion page, and a run's
+sections can be spliced into pages that exist."""
 
 import json
 
 import numpy as np
 import pytest
 
-from saltdem_post.cli import main
-from saltdem_post.gallery import GalleryRun, gallery_markdown, read_notes
-from saltdem_post.paper import STATEMENTS, scene_key
+from gallery_page import GalleryRun, gallery_markdown, main, read_notes, runs_markdown
+from paper_statements import STATEMENTS, scene_key
 
 
 @pytest.mark.parametrize("name, key", [
@@ -60,19 +61,53 @@ def test_run_directory_becomes_a_section(tmp_path):
 
     page = tmp_path / "docs"
     text = gallery_markdown([run], read_notes(str(notes)), str(page / "img"), str(page))
+    long = runs_markdown([run], read_notes(str(notes)))
     assert "| [expt1_contact](#expt1_contact) | expt1 (§2.3, Fig. 3) | 13 min |" in text
-    assert "first \\| reading" in text                       # a '|' in a note does not split the row
-    assert f"| {said[0]} | first \\| reading |" in text
+    assert "first \\| reading" in long                       # a '|' in a note does not split the row
+    assert f"| {said[0]} | first \\| reading |" in long
     assert "- a remark beyond the paper" in text
-    assert "#### 1000 m" in text and "![expt1_contact](img/expt1_contact.png)" in text
-    assert "Dumps: `expt1_contact/dump.expt1.*.txt`" in text and str(tmp_path) not in text
+    assert f"Of the paper's {len(said)} statement(s): " in text     # counted by leading marks: none here
+    assert "(gallery/runs.md#expt1_contact)" in text and "(../gallery.md#expt1_contact)" in long
+    assert "#### 1000 m" in long and "![expt1_contact](img/expt1_contact.png)" in text
+    assert "Dumps: `expt1_contact/dump.expt1.*.txt`" in long
+    assert str(tmp_path) not in text and str(tmp_path) not in long
     assert (page / "img" / "expt1_contact.png").stat().st_size > 0
 
 
 def test_unassessed_statements_say_so_and_cli_writes_the_page(tmp_path):
     runs = [make_run(tmp_path, "fig7_salt250"), make_run(tmp_path, "expt3_slow_contact")]
     out = tmp_path / "gallery.md"
-    main(["gallery", *map(str, runs), "-o", str(out)])
-    text = out.read_text()
-    assert text.count("not assessed") == len(STATEMENTS["fig7_salt250"][1]) + len(STATEMENTS["expt3_slow"][1])
+    main([*map(str, runs), "-o", str(out)])
+    text, long = out.read_text(), (tmp_path / "gallery" / "runs.md").read_text()
+    assert long.count("not assessed") == len(STATEMENTS["fig7_salt250"][1]) + len(STATEMENTS["expt3_slow"][1])
+    assert f"{len(STATEMENTS['fig7_salt250'][1])} not assessed." in text
     assert "fig7_salt250 (§3, Fig. 7c)" in text and "expt3_slow (§3, Fig. 6c)" in text
+
+
+def test_leading_marks_are_counted_and_a_run_is_spliced(tmp_path):
+    """A run's row and sections replace the old ones in both pages; the other runs and what the
+    page has beyond the gallery stay as they were."""
+    runs = [make_run(tmp_path, "expt1"), make_run(tmp_path, "fig7_salt250")]
+    notes = tmp_path / "notes.md"
+    notes.write_text("## fig7_salt250\n- \u2713 localised\n- \u2717 no weld\n")
+    beyond = tmp_path / "beyond.md"
+    beyond.write_text("\n# Beyond the paper\n\n## wedge\n\nby hand\n")
+    out = tmp_path / "gallery.md"
+    main([*map(str, runs), "-o", str(out), "--notes", str(notes), "--append", str(beyond)])
+    text = out.read_text()
+    assert "Of the paper's 2 statement(s): 1 agree, 1 do not." in text
+    assert text.rstrip().endswith("## wedge\n\nby hand") and "\n\n\n" not in text
+
+    (runs[1] / "wall.txt").write_text("1800\n")
+    notes.write_text("## fig7_salt250\n- ~ localised in part\n- \u2713 a weld\n- spliced remark\n")
+    main([str(runs[1]), "-o", str(out), "--notes", str(notes), "--splice"])
+    new, long = out.read_text(), (tmp_path / "gallery" / "runs.md").read_text()
+    assert "| [fig7_salt250](#fig7_salt250) | fig7_salt250 (§3, Fig. 7c) | 30 min |" in new
+    assert "Of the paper's 2 statement(s): 1 agree, 1 in part." in new and "- spliced remark" in new
+    assert "| ~ localised in part |" in long and "no weld" not in long
+    assert new.count("## fig7_salt250") == 1 and long.count("## fig7_salt250") == 1
+    keep = text.split("## expt1\n", 1)[1].split("## fig7_salt250")[0]
+    assert keep in new and "## expt1\n" in long                   # the other run is untouched
+    assert new.rstrip().endswith("## wedge\n\nby hand")
+    with pytest.raises(SystemExit, match="no expt2 section"):
+        main([str(make_run(tmp_path, "expt2")), "-o", str(out), "--splice"])

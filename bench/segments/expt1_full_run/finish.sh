@@ -4,10 +4,12 @@
 #   bash bench/segments/expt1_full_run/finish.sh RUN_DIR [--splice]
 #
 # RUN_DIR: where the segments ran (the README's out/full); its frames dump.expt1.STEP.txt and
-# the ones kept here (frames/*.gz, unpacked where RUN_DIR lacks them) are read.  Writes the
+# the kept ones (expt1_full_run/frames/*.gz under $SALTDEM_SEGMENTS, default
+# ~/.cache/saltdem/segments: not in git, the README; unpacked where RUN_DIR lacks them) are read.  Writes the
 # gallery's run directory out/gallery_full/expt1_full (links to the frames, figures/,
 # outcomes/, cmd.txt, wall.txt: the sum of wall_segments.txt here).  With --splice the
-# gallery's expt1_full row and section in docs/gallery.md are replaced by this run's
+# gallery's expt1_full row and sections in docs/gallery.md and docs/gallery/runs.md are replaced
+# by this run's (tools/docs/gallery_page.py --splice)
 # (the notes' '## expt1_full' lines, docs/gallery/notes.md, say what it shows: edit them
 # first).  Run from anywhere; Python: /usr/bin/python3 or $PYTHON.
 set -euo pipefail
@@ -19,11 +21,19 @@ py=${PYTHON:-/usr/bin/python3}
 post="$root/python/saltdem-post"
 out="$root/out/gallery_full/expt1_full"
 
+segs=${SALTDEM_SEGMENTS:-${SALTDEM_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/saltdem}/segments}
 mkdir -p "$out"
-for gz in "$here"/frames/dump.expt1.*.txt.gz; do
-  f=$(basename "$gz" .gz)
-  [ -f "$run/$f" ] || gunzip -c "$gz" > "$run/$f"
-done
+if compgen -G "$segs/expt1_full_run/frames/dump.expt1.*.txt.gz" > /dev/null; then
+  for gz in "$segs"/expt1_full_run/frames/dump.expt1.*.txt.gz; do
+    f=$(basename "$gz" .gz)
+    [ -f "$run/$f" ] || gunzip -c "$gz" > "$run/$f"
+  done
+else
+  echo "finish: no kept frames in $segs/expt1_full_run/frames (they are not in git; set" \
+       "SALTDEM_SEGMENTS): using only the frames in $run" >&2
+fi
+compgen -G "$run/dump.expt1.*.txt" > /dev/null || {
+  echo "finish: no frames dump.expt1.*.txt in $run: run the full Expt 1 first (the README)" >&2; exit 1; }
 rm -f "$out"/dump.expt1.*.txt
 ln -s "$run"/dump.expt1.*.txt "$out"/
 echo "mpirun -np 2 lmp -in examples/expt1.in -var preset full -var restart_disp 25" > "$out/cmd.txt"
@@ -35,21 +45,6 @@ awk '$1 ~ /^[0-9]+$/ {s += $1} END {print s}' "$here/wall_segments.txt" > "$out/
 echo "finish: $out (wall $(cat "$out/wall.txt") s)"
 [ "$splice" = --splice ] || exit 0
 
-# one-run page beside the gallery (so that its figure path is the gallery's), then its row and
-# section replace the old ones
-one="$root/docs/.gallery_expt1_full.md"
-"$py" "$post" gallery "$out" --notes "$root/docs/gallery/notes.md" -o "$one"
-"$py" - "$one" "$root/docs/gallery.md" <<'EOF'
-import re, sys
-one, page = open(sys.argv[1]).read(), open(sys.argv[2]).read()
-row = re.compile(r"^\| \[expt1_full\]\(#expt1_full\) \|.*$", re.M)
-sec = re.compile(r"^## expt1_full\n.*?(?=^## |\Z)", re.M | re.S)
-new_row, new_sec = row.search(one).group(0), sec.search(one).group(0)
-if not row.search(page) or not sec.search(page):
-    sys.exit("finish: docs/gallery.md has no expt1_full row or section to replace")
-page = row.sub(lambda _: new_row, page, count=1)
-page = sec.sub(lambda _: new_sec, page, count=1)
-open(sys.argv[2], "w").write(page)
-print("finish: docs/gallery.md's expt1_full row and section replaced")
-EOF
-rm -f "$one"
+# its row and section in docs/gallery.md and its section in docs/gallery/runs.md replace the old
+"$py" "$root/tools/docs/gallery_page.py" "$out" --notes "$root/docs/gallery/notes.md" \
+    -o "$root/docs/gallery.md" --splice

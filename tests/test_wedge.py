@@ -85,7 +85,7 @@ def test_wedge_deck_thermo_shows_the_front(tiny):
 
 def test_wedge_deck_resumes(tiny, tmp_path):
     wd, _ = tiny
-    res = sorted(wd.glob("wedge.restart.*"), key=lambda p: p.stat().st_mtime)
+    res = sorted(wd.glob("wedge.restart.[ab]"), key=lambda p: p.stat().st_mtime)
     for f in list(wd.glob("pack_*.data")) + res:
         (tmp_path / f.name).write_bytes(f.read_bytes())
     proc = run_deck(tmp_path, preset="tiny", restart=res[0].name)

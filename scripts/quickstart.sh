@@ -19,5 +19,5 @@ py=${SALTDEM_PYTHON:-/usr/bin/python3}
 "$py" "$root/python/saltdem-post" figure 'dump.expt1.*.txt' --fault-x 3125 \
   --at 100 250 500 750 1000 --increment 50 -o figures --name expt1_quick.png \
   --title "Expt 1 (quick preset)"
-"$py" "$root/python/saltdem-post" outcomes 'dump.expt1.*.txt' -o figures
+"$py" "$root/python/saltdem-post" outcomes 'dump.expt1.*.txt' --fault-x 3125 --scene fault -o figures
 echo "quickstart: figure at $out/figures/expt1_quick.png, outcomes at $out/figures/outcomes.md"

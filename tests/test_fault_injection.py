@@ -6,7 +6,6 @@ The scene is the tiny Expt 1 (examples/expt1.in -var preset tiny at 0.05 m/s, 2 
 file every 0.25 m, so both files of the pair (.a/.b) and their checksums
 (fix saltdem/checksum) exist after the first metre."""
 import os
-import pathlib
 import re
 import shutil
 import signal

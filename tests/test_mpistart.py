@@ -3,8 +3,6 @@ from crashes of lmp by their text (tests/mpistart.py)."""
 import subprocess
 from types import SimpleNamespace
 
-import pytest
-
 import mpistart
 from fuzzlib import classify
 from lmprun import lmp_path

@@ -107,7 +107,7 @@ def test_fixed_right_wall_stays(tmp_path):
     (dict(preset="huge"), "preset huge must be full, medium, quick or tiny"),
 ])
 def test_bad_variant_stops(tmp_path, opts, words):
-        from lmprun import ROOT, lmp_path, run_cmd
+    from lmprun import ROOT, lmp_path, run_cmd
     cmd = [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-echo", "none", "-var", "root", str(ROOT)]
     opts = dict(dict(preset="tiny"), **opts)
     for k, v in opts.items():

@@ -127,7 +127,8 @@ def test_pip_install_console_scripts(tmp_path, fixture_path):
     res = run([bindir / "saltdem-calibrate", "-q", "-o", work / "cal", "--lmp", sys.executable, "biaxial"],
               cwd=work)
     assert res.returncode == 2 and "no SaltDEM checkout" in res.stderr, res.stdout + res.stderr
-    probe = "import saltdem_post.calibration.cli as c; print(c.REPO, c.DECKS.is_dir())"
+    probe = ("from saltdem_post.calibration.runner import find_repo; p = find_repo(); "
+             "print(p, (p / 'examples' / 'calibration').is_dir())")
     for cwd, env in ((REPO / "docs", {}), (work, {"SALTDEM_ROOT": str(REPO)})):
         res = run([py, "-c", probe], cwd=cwd, **env)
         assert res.returncode == 0, res.stderr

@@ -127,7 +127,7 @@ def test_pip_install_console_scripts(tmp_path, fixture_path):
     res = run([bindir / "saltdem-calibrate", "-q", "-o", work / "cal", "--lmp", sys.executable, "biaxial"],
               cwd=work)
     assert res.returncode == 2 and "no SaltDEM checkout" in res.stderr, res.stdout + res.stderr
-    probe = ("from saltdem_post.calibration.runner import find_repo; p = find_repo(); "
+    probe = ("from saltdem_post.checkout import find_repo; p = find_repo(); "
              "print(p, (p / 'examples' / 'calibration').is_dir())")
     for cwd, env in ((REPO / "docs", {}), (work, {"SALTDEM_ROOT": str(REPO)})):
         res = run([py, "-c", probe], cwd=cwd, **env)

@@ -22,7 +22,7 @@ Every command merges its results into ``results.json`` of the output
 directory and rewrites the report from all sections there, so a ``search``
 followed by ``all`` in the same directory gives one report.  The decks,
 ``tools/pack.in``, ``potentials/`` and the default ``build/lmp`` are those of
-the SaltDEM checkout (``runner.find_repo``: $SALTDEM_ROOT, the checkout this package
+the SaltDEM checkout (``checkout.find_repo``: $SALTDEM_ROOT, the checkout this package
 sits in, or the one the current directory is in).  See docs/validation.md.
 """
 
@@ -35,11 +35,12 @@ import sys
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence
 
+from ..checkout import is_checkout, lmp_path, repo
 from ..output import ensure_dir
 from .experiments import (BIAXIAL_ERATE, BIAXIAL_STRAIN, COHESION_KNOB, COUETTE_ETA, COUETTE_V, COUETTE_VREF,
                           COVER_NAMES, MPA, PRESETS, apply_knob, biaxial_set, couette_runs, cover_material,
                           potentials, repose_run, salt_material, sample_spec, solve_plane)
-from .runner import CalibrationError, Context, is_checkout, lmp_default, repo, say
+from .runner import CalibrationError, Context, say
 from .writers import load_results, params_text_cover, params_text_salt, save_results, write_params
 
 
@@ -321,7 +322,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             if not is_checkout(ctx.root):
                 raise CalibrationError(f"no SaltDEM checkout at {ctx.root} (no examples/calibration/biaxial.in or "
                                        "tools/pack.in): run from the checkout or set SALTDEM_ROOT")
-            ctx.lmp = ctx.lmp or lmp_default(ctx.root)
+            ctx.lmp = ctx.lmp or lmp_path(ctx.root)
             if not os.path.isfile(ctx.lmp):
                 raise CalibrationError(f"no LAMMPS executable at {ctx.lmp}: build it or pass --lmp / SALTDEM_LMP")
         if args.command == "all":

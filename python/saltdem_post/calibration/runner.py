@@ -1,5 +1,5 @@
-"""Running the calibration decks: the SaltDEM checkout they come from, one
-LAMMPS run per job in its own directory, several at a time."""
+"""Running the calibration decks of the SaltDEM checkout: one LAMMPS run per
+job in its own directory, several at a time."""
 
 from __future__ import annotations
 
@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence
 
+from ..checkout import repo
 from ..output import ensure_dir
 
 
@@ -29,34 +30,6 @@ def say(text: str) -> None:
 def note(ctx, text: str) -> None:
     if not ctx.quiet:
         print(f"saltdem-calibrate: {text}", file=sys.stderr, flush=True)
-
-
-def is_checkout(path: Path) -> bool:
-    return (path / "examples" / "calibration" / "biaxial.in").is_file() and (path / "tools" / "pack.in").is_file()
-
-
-def find_repo() -> Optional[Path]:
-    """The SaltDEM checkout whose decks, packing tool, potentials and build/lmp
-    the calibration uses: $SALTDEM_ROOT if set, else the checkout this package
-    sits in (python/saltdem_post/calibration/ of a checkout: the wrapper
-    python/saltdem-calibrate), else (an installed package) the current
-    directory or the nearest directory above it that is a checkout.  None if
-    there is none; the commands that run LAMMPS then stop with an error."""
-    env = os.environ.get("SALTDEM_ROOT")
-    if env:
-        return Path(env).resolve()
-    here = Path(__file__).resolve().parents[3]
-    if is_checkout(here):
-        return here
-    cwd = Path.cwd().resolve()
-    return next((d for d in (cwd, *cwd.parents) if is_checkout(d)), None)
-
-
-def repo() -> Path:
-    """find_repo(), or where a checkout would hold this package (for the
-    error message that there is none)."""
-    found = find_repo()
-    return found if found is not None else Path(__file__).resolve().parents[3]
 
 
 @dataclass
@@ -85,10 +58,6 @@ class Job:
     seconds: float = 0.0
     reused: bool = False
     always: bool = False        # never reuse (e.g. a deck whose input files change)
-
-
-def lmp_default(root: Path) -> str:
-    return os.environ.get("SALTDEM_LMP", str(root / "build" / "lmp"))
 
 
 def run_one(ctx: Context, job: Job) -> Job:

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Strong-scaling model of the SaltDEM scenes, fitted to the scene benchmark's 1, 2 and 4 rank runs.
 
-    bash bench/run-bench.sh --configs serial,mpi2,mpi2y,mpi4
-    /usr/bin/python3 bench/scaling_model.py out/bench/results.json [--scene-dump DUMP]
+    bash bench/performance/run-bench.sh --configs serial,mpi2,mpi2y,mpi4
+    PYTHONPATH=python /usr/bin/python3 bench/performance/scaling_model.py out/bench/results.json [--scene-dump DUMP]
 
 Model (docs/performance.md, "Strong scaling: model and projections").  One step on P ranks takes
 
@@ -58,9 +58,9 @@ import sys
 
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "python"))
-from saltdem_post.dump import read_frame  # noqa: E402  (the package's dump reader)
+from saltdem_post.dump import read_frame
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 KINDS = ("grid", "grid+balance", "strips", "strips+balance")
 SALT_WEIGHT_DECKS = 3.0      # examples/scene/frames.in: fix balance ... weight group 1 salt 3.0
 
@@ -68,7 +68,7 @@ SALT_WEIGHT_DECKS = 3.0      # examples/scene/frames.in: fix balance ... weight 
 def parse_args(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("results", help="results.json of bench/run-bench.sh with serial, mpi2 "
+    p.add_argument("results", help="results.json of bench/performance/run-bench.sh with serial, mpi2 "
                    "(real cores), mpi4 (counts) and optionally mpi2y (real cores: fits w)")
     p.add_argument("--dump", default=None, help="dump of the benchmark scene (default: "
                    "bench_settled.dump next to the results file)")
@@ -326,7 +326,7 @@ def fit(res, scene, args):
         sys.exit("scaling_model: the results have no serial run of style " + args.style)
     cutghost = s1.get("ghost_cutoff")
     if not cutghost:
-        sys.exit("scaling_model: no ghost cutoff in the results (run bench/run-bench.sh of this "
+        sys.exit("scaling_model: no ghost cutoff in the results (run bench/performance/run-bench.sh of this "
                  "version)")
     rec = dict(cutghost=dict(value=cutghost, source="serial run's log: ghost atom cutoff"))
     n1 = scene.counts()
@@ -478,7 +478,7 @@ def main(argv=None):
     res = json.loads(rpath.read_text())
     dump = pathlib.Path(args.dump) if args.dump else rpath.parent / "bench_settled.dump"
     if not dump.exists():
-        sys.exit(f"scaling_model: no scene dump {dump} (bench/run-bench.sh writes "
+        sys.exit(f"scaling_model: no scene dump {dump} (bench/performance/run-bench.sh writes "
                  "bench_settled.dump in its output directory)")
     sc = res["scene"]
     width = sc["width"]
@@ -568,7 +568,7 @@ def main(argv=None):
 def report(o, args):
     L = []
     md = o["model"]
-    L.append("SaltDEM strong-scaling model (bench/scaling_model.py)")
+    L.append("SaltDEM strong-scaling model (bench/performance/scaling_model.py)")
     L.append(f"from {o['results']}  scene dump {o['dump']}")
     for k in ("a_pair", "a_rest", "w", "b", "k", "cutghost", "latency", "passes"):
         v = md[k]

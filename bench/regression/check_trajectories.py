@@ -6,12 +6,14 @@
                                        position difference over the box width must stay below
                                        --tol (default 1e-10), velocities below --vtol m/s
 
-The checks: bench/trajectory.in with the cohesive law (cohesion, tension, rolling, sliding),
+The checks: bench/regression/trajectory.in with the cohesive law (cohesion, tension, rolling, sliding),
 the fluid law and the contact law of saltdem/viscous (500 steps each on a dense pack made once
-by tools/pack.in), and the Expt 1 benchmark scene (bench/bench_scene.in, hybrid of both styles,
+by tools/pack.in), and the Expt 1 benchmark scene (bench/performance/bench_scene.in, hybrid of both styles,
 a moving hanging wall) on one thread and with the OpenMP styles on two.  Every run is serial
 in MPI terms and deterministic, so an optimisation that only drops exact zeros reproduces the
 dumps bit for bit; one that reorders arithmetic moves them by round-off.
+
+From the repository root: PYTHONPATH=python /usr/bin/python3 bench/regression/check_trajectories.py ...
 """
 import argparse
 import os
@@ -21,22 +23,20 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+from saltdem_post.checkout import lmp_path
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 CHECKS = {
-    "cohesive": dict(deck="bench/trajectory.in", vars=dict(law="cohesive"), dump="traj_cohesive.dump"),
-    "fluid": dict(deck="bench/trajectory.in", vars=dict(law="fluid"), dump="traj_fluid.dump"),
-    "contact": dict(deck="bench/trajectory.in", vars=dict(law="contact"), dump="traj_contact.dump"),
-    "scene": dict(deck="bench/bench_scene.in", dump="bench_final.dump",
+    "cohesive": dict(deck="bench/regression/trajectory.in", vars=dict(law="cohesive"), dump="traj_cohesive.dump"),
+    "fluid": dict(deck="bench/regression/trajectory.in", vars=dict(law="fluid"), dump="traj_fluid.dump"),
+    "contact": dict(deck="bench/regression/trajectory.in", vars=dict(law="contact"), dump="traj_contact.dump"),
+    "scene": dict(deck="bench/performance/bench_scene.in", dump="bench_final.dump",
                   vars=dict(strip=500, ncopy=2, nlayer=5, nsettle=300, nwarm=0, nsteps=500,
                             styles="saltdem", dump=1)),
-    "scene-omp2": dict(deck="bench/bench_scene.in", dump="bench_final.dump", omp=2,
+    "scene-omp2": dict(deck="bench/performance/bench_scene.in", dump="bench_final.dump", omp=2,
                        vars=dict(strip=500, ncopy=2, nlayer=5, nsettle=300, nwarm=0, nsteps=500,
                                  styles="saltdem", dump=1)),
 }
-
-
-def lmp_path():
-    return os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
 
 
 def run(cmd, cwd, omp=0):
@@ -50,7 +50,7 @@ def run(cmd, cwd, omp=0):
 def ensure_pack(cache):
     pack = cache / "traj_pack.data"
     if not pack.exists():
-        run([lmp_path(), "-in", str(ROOT / "tools" / "pack.in"), "-log", "none", "-echo", "none",
+        run([lmp_path(ROOT), "-in", str(ROOT / "tools" / "pack.in"), "-log", "none", "-echo", "none",
              "-screen", "none", "-var", "W", "1000", "-var", "H", "500", "-var", "rmin", "6.25",
              "-var", "rmax", "15.625", "-var", "seed", "7", "-var", "kn", "1e10",
              "-var", "out", str(pack)], cache)
@@ -59,7 +59,7 @@ def ensure_pack(cache):
 
 def run_check(name, wd, cache):
     c = CHECKS[name]
-    cmd = [lmp_path(), "-in", str(ROOT / c["deck"]), "-log", "log." + name, "-echo", "none",
+    cmd = [lmp_path(ROOT), "-in", str(ROOT / c["deck"]), "-log", "log." + name, "-echo", "none",
            "-screen", "none", "-var", "root", str(ROOT)]
     if "trajectory" in c["deck"]:
         cmd += ["-var", "pack", str(ensure_pack(cache))]

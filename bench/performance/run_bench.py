@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""SaltDEM scene benchmark driver (bench/run-bench.sh calls it).
+"""SaltDEM scene benchmark driver (bench/performance/run-bench.sh calls it).
 
-Runs bench/bench_scene.in - the Expt 1 scene with the SaltDEM styles and the same packing with
+Runs bench/performance/bench_scene.in - the Expt 1 scene with the SaltDEM styles and the same packing with
 stock gran/hooke/history, in one LAMMPS invocation - on 1 MPI rank, 2 MPI ranks and 1 rank with
 2 OpenMP threads (and, on request, 4 MPI ranks: mpi4, and 2 ranks cut horizontally through the
 salt and cover layers: mpi2y), and writes
@@ -15,7 +15,7 @@ salt and cover layers: mpi2y), and writes
                      are not speed, its counts are valid); ratios SaltDEM/stock per
                      configuration, speed-ups over 1 rank, the machine, and the projected wall
                      time of the full Expt 1 (--project-atoms discs, --project-steps steps).
-                     bench/scaling_model.py fits a strong-scaling model to these.
+                     bench/performance/scaling_model.py fits a strong-scaling model to these.
   OUT/results.txt    the same as a readable table
   OUT/logs/          the LAMMPS logs
 
@@ -33,7 +33,9 @@ import shutil
 import subprocess
 import sys
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+from saltdem_post.checkout import lmp_path
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 SECTIONS = ("Pair", "Neigh", "Comm", "Output", "Modify", "Other")
 CONFIGS = {
     "serial": dict(np=1, omp=0, label="1 rank, 1 thread"),
@@ -53,7 +55,7 @@ COUNTS = ("Nlocal", "Nghost", "Neighs")
 def parse_args(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--lmp", default=os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp")),
+    p.add_argument("--lmp", default=lmp_path(ROOT),
                    help="LAMMPS executable (default build/lmp or $SALTDEM_LMP)")
     p.add_argument("--out", default=str(ROOT / "out" / "bench"), help="output directory")
     p.add_argument("--preset", default="full",
@@ -69,7 +71,7 @@ def parse_args(argv=None):
     p.add_argument("--nsteps", type=int, default=1000, help="timed steps per style")
     p.add_argument("--styles", default="saltdem stock", help="styles to run (saltdem, stock)")
     p.add_argument("--configs", default="serial,mpi2,omp2",
-                   # mpi4, mpi2y on request: bench/scaling_model.py wants serial,mpi2,mpi2y,mpi4
+                   # mpi4, mpi2y on request: bench/performance/scaling_model.py wants serial,mpi2,mpi2y,mpi4
                    help="comma list of: " + ", ".join(CONFIGS))
     p.add_argument("--var", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
                    help="extra -var NAME VALUE for the deck (e.g. skin 2.5)")
@@ -191,7 +193,7 @@ def run_config(args, name, cfg, outdir):
     logdir = outdir / "logs"
     logdir.mkdir(parents=True, exist_ok=True)
     log = logdir / f"{name}{'-' + args.tag if args.tag else ''}.log"
-    cmd = [args.lmp, "-in", str(ROOT / "bench" / "bench_scene.in"), "-log", str(log),
+    cmd = [args.lmp, "-in", str(ROOT / "bench" / "performance" / "bench_scene.in"), "-log", str(log),
            "-echo", "none", "-screen", "none",
            "-var", "root", str(ROOT), "-var", "preset", args.preset,
            "-var", "strip", f"{args.strip:g}", "-var", "ncopy", str(args.ncopy),
@@ -342,7 +344,7 @@ def main(argv=None):
             sys.exit(f"run_bench: unknown configuration '{c}' (expected {', '.join(CONFIGS)})")
     result = dict(date=datetime.datetime.now().isoformat(timespec="seconds"),
                   machine=machine(), lammps=lammps_version(args.lmp),
-                  command=" ".join(["bench/run-bench.sh", *(argv if argv is not None else sys.argv[1:])]),
+                  command=" ".join(["bench/performance/run-bench.sh", *(argv if argv is not None else sys.argv[1:])]),
                   scene=dict(preset=args.preset, strip=args.strip, ncopy=args.ncopy, nlayer=args.nlayer,
                              width=args.strip * args.ncopy, nsettle=args.nsettle, nwarm=args.nwarm,
                              nsteps=args.nsteps,

@@ -6,7 +6,7 @@ other settings, compared with a reference segment and against the run-to-run flo
 Every segment resumes the same restart file through the deck's own resume path
 (examples/expt1.in -var restart FILE) with its settings given as deck variables (-var dt: the
 time step, 0 = 0.85 of the styles' stable limit; -var S and S_cover: the inertia factors), and
-runs LENGTH m of fault displacement.  The fields compared are those of bench/expt1_error.py over
+runs LENGTH m of fault displacement.  The fields compared are those of bench/performance/expt1_error.py over
 the segment (salt thickness change per 250 m column, mean marker displacement and mean
 incremental maximum shear strain per 250 m cell, from the common first frame at the restart to
 each segment's last frame):
@@ -22,7 +22,7 @@ The floor: the same settings on 1 OpenMP thread and on 2 (round-off only, which 
 cover turns into a different, equally valid run).  A setting whose difference from the
 reference lies within the floor cannot be told from it.
 
-  PYTHONPATH=python /usr/bin/python3 bench/expt1_segment.py --restart R --work out/segments \\
+  PYTHONPATH=python /usr/bin/python3 bench/performance/expt1_segment.py --restart R --work out/segments \\
       --seg paper:0.002:20:1 --seg paper-omp2:0.002:20:2 --seg new:0:20:1 --seg new-omp2:0:20:2 \\
       --ref paper --floor paper:paper-omp2 --floor new:new-omp2 [--length 50] [--table T.md]
 
@@ -42,12 +42,8 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from expt1_error import ROOT, compare, fields    # noqa: E402  (the same measures)
-
-
-def lmp_path():
-    return os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
+from expt1_error import ROOT, compare, fields    # the same measures (expt1_error.py next to this script)
+from saltdem_post.checkout import lmp_path
 
 
 def deck_args(preset, restart, extra, ranks=1):
@@ -56,7 +52,7 @@ def deck_args(preset, restart, extra, ranks=1):
         if not shutil.which("mpirun"):
             sys.exit("expt1_segment: mpirun not found (install openmpi-bin) for a segment on MPI ranks")
         mpi = ["mpirun", "-np", str(ranks)] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
-    return mpi + [lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-log", "log.lammps",
+    return mpi + [lmp_path(ROOT), "-in", str(ROOT / "examples" / "expt1.in"), "-log", "log.lammps",
             "-echo", "none", "-screen", "none", "-var", "root", str(ROOT), "-var", "preset", preset,
             "-var", "restart", str(restart)] + extra
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Time per interacting pair of each pair style, side by side in one LAMMPS run.
 
-bench/bench_pair.in runs one settled 2D pack (tools/pack.in, the paper's disc radii) under
+bench/performance/bench_pair.in runs one settled 2D pack (tools/pack.in, the paper's disc radii) under
 gravity with stock gran/hooke/history, saltdem/cohesive, saltdem/viscous (the SPH salt) and
 saltdem/viscous with 2 viscous sub-steps (the full preset's), one after the other in the same
 invocation, and counts each style's interacting pairs at the end: touching pairs for the
@@ -9,7 +9,7 @@ granular styles (compute contact/atom), pairs within the kernel's 2h = 56 m for 
 (compute coord/atom).  The cost per pair is the run's Pair time (LAMMPS's breakdown, which for
 the salt includes its kernel-moment and density passes and the sub-steps) over steps x pairs.
 
-  python3 bench/pair_cost.py [--lmp build/lmp] [--work out/pair_cost] [--nsteps 2000]
+  PYTHONPATH=python python3 bench/performance/pair_cost.py [--lmp build/lmp] [--work out/pair_cost] [--nsteps 2000]
         [--W 800 --H 750] [--styles hooke,cohesive,viscous,viscous2] [--json FILE]
 """
 import argparse
@@ -19,8 +19,9 @@ import re
 import subprocess
 import sys
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from salt_film import ROOT, make_pack  # noqa: E402
+from saltdem_post.checkout import lmp_path, make_pack
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 LOOP = re.compile(r"^Loop time of (\S+) on (\d+) procs for (\d+) steps")
 PAIR = re.compile(r"^Pair\s+\|\s*(\S+)\s*\|\s*(\S+)\s*\|\s*(\S+)")
@@ -60,7 +61,7 @@ def parse(text):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--lmp", default=str(ROOT / "build" / "lmp"))
+    ap.add_argument("--lmp", default=lmp_path(ROOT))
     ap.add_argument("--work", default=str(ROOT / "out" / "pair_cost"))
     ap.add_argument("--nsteps", type=int, default=2000)
     ap.add_argument("--W", type=float, default=800.0)
@@ -74,7 +75,7 @@ def main():
     lmp = str(pathlib.Path(args.lmp).resolve())
     pack = make_pack(lmp, work / "packs", args.W, args.H, 6.25, 15.625)
     styles = args.styles.replace(",", " ")
-    subprocess.run([lmp, "-in", str(ROOT / "bench" / "bench_pair.in"), "-log", "log.lammps",
+    subprocess.run([lmp, "-in", str(ROOT / "bench" / "performance" / "bench_pair.in"), "-log", "log.lammps",
                     "-screen", "none", "-nocite", "-var", "pack", str(pack), "-var", "nsteps",
                     str(args.nsteps), "-var", "styles", styles], cwd=work, check=True)
     res = parse((work / "log.lammps").read_text())

@@ -4,9 +4,9 @@
   slope    a salt layer (H ~ 200 m, the full preset's discs, h = 1.3 disc spacings, the
            scenes' eta 5e8 Pa s, K 1e9 Pa, S 20) flowing down a gentle slope (sin 0.0135)
            under its own weight on a no-slip base of wall discs, free top, x periodic
-           (bench/salt_slope.in).  Its flux per unit width against the lubrication value
+           (bench/validation/salt_slope.in).  Its flux per unit width against the lubrication value
            rho g sin(theta) H^3 / (3 eta) over time, at full gravity and at a tenth of it.
-  couette  plane Couette flow under a weighted lid at pressure P (bench/salt_couette.in):
+  couette  plane Couette flow under a weighted lid at pressure P (bench/validation/salt_couette.in):
            the lid's shear stress over the interior shear rate (layers more than 3 rmax from
            the bands), eta_eff / eta, at P 0.1, 2 and 20 MPa and lid speeds V 0.01, 0.04 and
            0.1 m/s over a gap of ~196 m (the stress against the rate at several pressures;
@@ -16,7 +16,7 @@ rho is the salt's mass per area in the interior of the layer (the profile), H = 
 the thickness of a layer of that density on the base band's top, u the salt's mean velocity
 (vcm), so that flux / lubrication = u / (rho g sin H^2 / (3 eta)).
 
-  python3 bench/salt_under_load.py [--lmp build/lmp] [--work out/salt_under_load]
+  PYTHONPATH=python python3 bench/validation/salt_under_load.py [--lmp build/lmp] [--work out/salt_under_load]
         [--cases slope,couette] [--time 1500] [--extra 'PAIR STYLE KEYWORDS']
         [--couette P:V,...]
 
@@ -32,7 +32,9 @@ import math
 import pathlib
 import subprocess
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+from saltdem_post.checkout import lmp_path
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 RMIN, RMAX = 6.25, 15.625
 ETA = 5e8
 SLOPE = 0.0135
@@ -55,7 +57,7 @@ def make_pack(lmp, work, W, H, seed=7):
 
 def run_deck(lmp, deck, wdir, variables):
     wdir.mkdir(parents=True, exist_ok=True)
-    cmd = [lmp, "-in", str(ROOT / "bench" / deck), "-log", "log.lammps", "-screen", "none",
+    cmd = [lmp, "-in", str(ROOT / "bench" / "validation" / deck), "-log", "log.lammps", "-screen", "none",
            "-nocite"]
     for k, v in variables.items():
         cmd += ["-var", k, str(v)]
@@ -153,7 +155,7 @@ def at(series, t):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--lmp", default=str(ROOT / "build" / "lmp"))
+    ap.add_argument("--lmp", default=lmp_path(ROOT))
     ap.add_argument("--work", default=str(ROOT / "out" / "salt_under_load"))
     ap.add_argument("--cases", default="slope,couette")
     ap.add_argument("--time", type=float, default=1500.0)

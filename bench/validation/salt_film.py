@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A salt film on an incline (bench/salt_film.in) against its analytic profile.
+"""A salt film on an incline (bench/validation/salt_film.in) against its analytic profile.
 
 The film: the SPH salt of pair saltdem/viscous on a no-slip base of one line of wall discs
 (as the scenes' basements), free top, x periodic, gravity tilted by sin(theta).  Analytic:
@@ -16,7 +16,7 @@ with y from the top of the wall discs, rho the salt's mass per area in the inter
   eta    -rho g sin / (2 c) from the curvature c of a parabola fitted to the interior
   slip   where that parabola reaches u = 0, below the wall discs' top (m; > 0: the salt slips)
 
-  python3 bench/salt_film.py [--lmp build/lmp] [--work out/salt_film] [--json FILE]
+  PYTHONPATH=python python3 bench/validation/salt_film.py [--lmp build/lmp] [--work out/salt_film] [--json FILE]
         [--case NAME:H:key=value,...] [--seconds 60] [--W 400]
 
   (case keys: the deck's variables, and rmin, rmax, seed of the pack)
@@ -28,21 +28,9 @@ import subprocess
 
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+from saltdem_post.checkout import lmp_path, make_pack
 
-
-def make_pack(lmp, work, W, H, rmin, rmax, seed=7, dist="uniform"):
-    """A settled pack of tools/pack.in on y = 0 (kept in work)."""
-    work.mkdir(parents=True, exist_ok=True)
-    out = work / f"pack_{W}x{H}_{rmin}_{rmax}_{dist}_{seed}.data"
-    if not out.exists():
-        subprocess.run([lmp, "-in", str(ROOT / "tools" / "pack.in"), "-log", "none", "-screen",
-                        "none", "-nocite", "-var", "W", str(W), "-var", "H", str(H), "-var", "rmin",
-                        str(rmin), "-var", "rmax", str(rmax), "-var", "dist", dist, "-var",
-                        "seed", str(seed), "-var", "kn", "5e9", "-var", "out", out.name + ".tmp"],
-                       cwd=work, check=True, stdout=subprocess.DEVNULL)
-        (work / (out.name + ".tmp")).rename(out)
-    return out
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def read_blocks(path):
@@ -112,7 +100,7 @@ def run_case(lmp, work, name, pack, seconds, rmax=15.625, **var):
     wdir = work / name
     wdir.mkdir(parents=True, exist_ok=True)
     h = var.get("h", 28)
-    cmd = [lmp, "-in", str(ROOT / "bench" / "salt_film.in"), "-log", "log.lammps", "-screen",
+    cmd = [lmp, "-in", str(ROOT / "bench" / "validation" / "salt_film.in"), "-log", "log.lammps", "-screen",
            "none", "-nocite", "-var", "pack", str(pack)]
     # the step is set by saltdem/timestep; nsteps from an estimate of it
     dt = var.pop("dt_est", 0.008)
@@ -126,7 +114,7 @@ def run_case(lmp, work, name, pack, seconds, rmax=15.625, **var):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--lmp", default=str(ROOT / "build" / "lmp"))
+    ap.add_argument("--lmp", default=lmp_path(ROOT))
     ap.add_argument("--work", default=str(ROOT / "out" / "salt_film"))
     ap.add_argument("--seconds", type=float, default=60.0)
     ap.add_argument("--W", type=float, default=400.0)

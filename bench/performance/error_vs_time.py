@@ -28,7 +28,7 @@ The cost is the CPU time of the LAMMPS process (on a busy machine the wall time 
 says less), measured on the machine that runs the script.  Writes OUT/results.json,
 OUT/table.md and, with --img DIR, one PNG per flow (error against CPU time, one line per knob).
 
-  PYTHONPATH=python /usr/bin/python3 bench/error_vs_time.py [--out out/error] [--img docs/img] [--knobs dt,inertia]
+  PYTHONPATH=python /usr/bin/python3 bench/performance/error_vs_time.py [--out out/error] [--img docs/img] [--knobs dt,inertia]
 
 (from the repository root; PYTHONPATH=python imports the checkout's saltdem_post, not needed
 once it is installed, see the README)
@@ -47,12 +47,13 @@ import time
 import numpy as np
 
 try:
+    from saltdem_post.checkout import lmp_path
     from saltdem_post.dump import read_ave_chunk
 except ImportError as exc:
     sys.exit(f"error_vs_time: {exc}: run with PYTHONPATH=python (from the repository root) or install "
              "the Python tools (pip install ./python)")
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 CHANNEL = ROOT / "tests" / "decks" / "channel.in"
 PARAMS = ROOT / "potentials" / "salt_paper.params"
@@ -96,15 +97,11 @@ def settings(knob, value):
     return s
 
 
-def lmp_path():
-    return os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
-
-
 def run_lmp(deck_args, cwd, timeout=3600):
     """Run lmp; returns (stdout, cpu seconds of the child, wall seconds)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.time()
-    p = subprocess.run([lmp_path(), *deck_args], cwd=cwd, capture_output=True, text=True,
+    p = subprocess.run([lmp_path(ROOT), *deck_args], cwd=cwd, capture_output=True, text=True,
                        timeout=timeout, env=dict(os.environ, OMP_NUM_THREADS="1"))
     wall = time.time() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)

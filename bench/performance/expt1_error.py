@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Error against run time of a quick Expt 1 (the scene of examples/expt1.in, preset quick,
-shortened to --target m of fault displacement; bench/expt1_knob.in) for the knobs that speed a
+shortened to --target m of fault displacement; bench/performance/expt1_knob.in) for the knobs that speed a
 scene run up, each against a slower, more accurate reference run of the same scene.  All runs
 settle alike and change the knob when the faulting starts:
 
@@ -26,7 +26,7 @@ Cost: CPU time of the whole LAMMPS run (assembly, settling and faulting; the pac
 assembly is made once beforehand).  Writes OUT/expt1.json,
 OUT/expt1_table.md and, with --img DIR, DIR/error_vs_time_expt1.png.
 
-  PYTHONPATH=python /usr/bin/python3 bench/expt1_error.py [--out out/error] [--img docs/img] [--target 50]
+  PYTHONPATH=python /usr/bin/python3 bench/performance/expt1_error.py [--out out/error] [--img docs/img] [--target 50]
 
 (from the repository root; PYTHONPATH=python imports the checkout's saltdem_post, not needed
 once it is installed, see the README)
@@ -43,6 +43,7 @@ import time
 import numpy as np
 
 try:
+    from saltdem_post.checkout import lmp_path
     from saltdem_post.dump import match_ids, read_frame
     from saltdem_post.measure import salt_thickness
     from saltdem_post.strain import strain_between
@@ -50,7 +51,7 @@ except ImportError as exc:
     sys.exit(f"expt1_error: {exc}: run with PYTHONPATH=python (from the repository root) or install "
              "the Python tools (pip install ./python)")
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 QUICK = dict(dt=0.0025, dstep=0.00125, eta=5e8)    # examples/scene/params.in, preset quick
 SALT = 1000.0                                     # m, the scene's salt thickness
@@ -75,10 +76,6 @@ COMPARE = [("control", "k1", ["k1-omp2"]), ("speedup", "k0.5", ["k1", "k2", "k4"
            ("dt", "dt0.5", ["k1"])]
 
 
-def lmp_path():
-    return os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
-
-
 def run(name, k, dtf, target, nsettle, work, omp=0):
     d = work / f"expt1_{name}"
     d.mkdir(parents=True, exist_ok=True)
@@ -86,7 +83,7 @@ def run(name, k, dtf, target, nsettle, work, omp=0):
     if done.exists():
         return json.loads(done.read_text())
     dt = QUICK["dt"] * dtf
-    args = [lmp_path(), "-in", str(ROOT / "bench" / "expt1_knob.in"), "-log", "log.lammps",
+    args = [lmp_path(ROOT), "-in", str(ROOT / "bench" / "performance" / "expt1_knob.in"), "-log", "log.lammps",
             "-echo", "none", "-screen", "none", "-var", "root", str(ROOT), "-var", "preset", "quick",
             "-var", "target", f"{target:g}", "-var", "f", f"{target / 2:g}", f"{target:g}",
             "-var", "nsettle", str(nsettle), "-var", "k", f"{k:g}", "-var", "dtf", f"{dtf:g}",

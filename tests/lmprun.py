@@ -7,12 +7,13 @@ import shutil
 import pytest
 
 import mpistart
+from saltdem_post import checkout
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
 def lmp_path():
-    exe = os.environ.get("SALTDEM_LMP", str(ROOT / "build" / "lmp"))
+    exe = checkout.lmp_path(ROOT)
     if not os.path.isfile(exe):
         pytest.fail(f"no LAMMPS executable at {exe}: build it first (see README) or set SALTDEM_LMP")
     return exe

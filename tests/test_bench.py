@@ -1,4 +1,4 @@
-"""The scene benchmark command (bench/run-bench.sh) on a tiny scene: it runs the SaltDEM styles
+"""The scene benchmark command (bench/performance/run-bench.sh) on a tiny scene: it runs the SaltDEM styles
 and stock gran/hooke/history on 1 rank, 2 MPI ranks, 2 OpenMP threads and 4 MPI ranks and
 writes well-formed result files, with the per-rank counts a scaling model needs (processor
 grid, ghost cutoff, Nlocal/Nghost/Neighs, min/avg/max of the timing breakdown) and the 4-rank
@@ -22,7 +22,7 @@ RANKS = {"serial": (1, 1), "mpi2": (2, 1), "omp2": (1, 2), "mpi4": (4, 1)}
 @pytest.fixture(scope="module")
 def bench(tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
-    cmd = ["bash", str(ROOT / "bench" / "run-bench.sh"), "--lmp", lmp_path(), "--out", str(out),
+    cmd = ["bash", str(ROOT / "bench" / "performance" / "run-bench.sh"), "--lmp", lmp_path(), "--out", str(out),
            *TINY]
     p = run_cmd(cmd, capture_output=True, text=True, timeout=900,
                        env=dict(os.environ, SALTDEM_PYTHON="/usr/bin/python3"))
@@ -128,13 +128,14 @@ def res_cores(out):
 
 
 def test_pair_cost_reports_every_style_per_interacting_pair(tmp_path):
-    """bench/pair_cost.py on a tiny pack: every style's timed run, its interacting pairs (the
+    """bench/performance/pair_cost.py on a tiny pack: every style's timed run, its interacting pairs (the
     granular styles' contacts about 2-4 per disc in a settled pack, the salt's kernel about 20),
     a finite cost per pair and the ratio to stock; no timings asserted."""
     js = tmp_path / "r.json"
-    p = run_cmd(["/usr/bin/python3", str(ROOT / "bench" / "pair_cost.py"), "--lmp", lmp_path(),
+    p = run_cmd(["/usr/bin/python3", str(ROOT / "bench" / "performance" / "pair_cost.py"), "--lmp", lmp_path(),
                         "--work", str(tmp_path), "--W", "300", "--H", "150", "--nsteps", "20",
-                        "--json", str(js)], capture_output=True, text=True, timeout=600)
+                        "--json", str(js)], capture_output=True, text=True, timeout=600,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT / "python")))
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
     res = json.loads(js.read_text())
     assert list(res) == ["hooke", "cohesive", "viscous", "viscous2"]

@@ -27,7 +27,7 @@ import pytest
 
 from lmprun import ROOT, check_ok, lmp_path, run_cmd
 # python/ is on the module path through pytest.ini (pythonpath = python)
-from saltdem_post.calibration import cli as calibrate
+from saltdem_post.calibration import experiments, runner, writers
 from saltdem_post.calibration import fit as calibfit
 
 COVER = ROOT / "potentials" / "cover_paper.params"
@@ -178,7 +178,7 @@ def plain_values(path):
 
 
 def run_cover_params(lmp, path, **var):
-    names = " ".join(f"{n}=${{{n}}}" for n in calibrate.COVER_NAMES)
+    names = " ".join(f"{n}=${{{n}}}" for n in experiments.COVER_NAMES)
     r = lmp(PAIR_DECK.format(params=path, names=names), **var)
     check_ok(r)
     line = next(l for l in r.out.splitlines() if l.startswith("P rscale_cover="))
@@ -192,15 +192,15 @@ def test_cover_params_parse_and_scale(lmp):
     exceeds tensile/kn (the attraction can reach its peak)."""
     got = run_cover_params(lmp, COVER)
     plain = plain_values(COVER)
-    assert set(calibrate.COVER_NAMES) - set(calibrate.SCALED) <= set(plain)
+    assert set(experiments.COVER_NAMES) - set(experiments.SCALED) <= set(plain)
     for k, v in plain.items():
         assert got[k] == pytest.approx(v)
     assert got["rng_cover"] > got["ten_cover"] / got["kn_cover"]
     q = run_cover_params(lmp, COVER, rscale_cover=4)
-    for k in calibrate.COVER_NAMES:
+    for k in experiments.COVER_NAMES:
         if k == "rscale_cover":
             assert q[k] == 4
-        elif k in calibrate.SCALED:
+        elif k in experiments.SCALED:
             assert q[k] == pytest.approx(4 * got[k])
         else:
             assert q[k] == pytest.approx(got[k])
@@ -249,14 +249,14 @@ def test_params_writer_round_trips(tmp_path):
     mat = dict(rscale_cover=1.0, kn_cover=3e9, kt_cover=1e9, mu_cover=0.55, coh_cover=2.5e8, ten_cover=2.0e8,
                rng_cover=0.2, zn_cover=0.3, zt_cover=0.3, kr_cover=3e9, mur_cover=0.17)
     p = tmp_path / "cover_test.params"
-    p.write_text(calibrate.params_text_cover(mat, None, None, None, "test", "pytest"))
-    ctx = calibrate.Context(lmp=lmp_path(), out=tmp_path / "out", quiet=True)
-    got = calibrate.cover_material(ctx, str(p), {}, 1.0)
+    p.write_text(writers.params_text_cover(mat, None, None, None, "test", "pytest"))
+    ctx = runner.Context(lmp=lmp_path(), out=tmp_path / "out", quiet=True)
+    got = experiments.cover_material(ctx, str(p), {}, 1.0)
     assert got == pytest.approx(mat)
-    got4 = calibrate.cover_material(ctx, str(p), {"mu_cover": "0.6"}, 4.0)
-    for k in calibrate.COVER_NAMES:
+    got4 = experiments.cover_material(ctx, str(p), {"mu_cover": "0.6"}, 4.0)
+    for k in experiments.COVER_NAMES:
         want = 4.0 if k == "rscale_cover" else 0.6 if k == "mu_cover" else \
-            mat[k] * (4 if k in calibrate.SCALED else 1)
+            mat[k] * (4 if k in experiments.SCALED else 1)
         assert got4[k] == pytest.approx(want), k
 
 

@@ -222,7 +222,7 @@ write_restart r.bin
 def hanging_restart(wd):
     """r.bin with the first atom's record zeroed (its size and coordinates): the reader puts the
     atom outside the box and skips 0 values, for ever."""
-    r = subprocess.run([lmp_path(), "-echo", "none", "-log", "none"], input=SMALL, cwd=wd,
+    r = run_cmd([lmp_path(), "-echo", "none", "-log", "none"], input=SMALL, cwd=wd,
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stdout + r.stderr
     b = bytearray((wd / "r.bin").read_bytes())
@@ -233,7 +233,7 @@ def hanging_restart(wd):
 
 
 def read_deck(wd, line, timeout):
-    return subprocess.run([lmp_path(), "-echo", "none", "-log", "none"],
+    return run_cmd([lmp_path(), "-echo", "none", "-log", "none"],
                           input=f"{line}\nprint 'read done'\n", cwd=wd, capture_output=True,
                           text=True, timeout=timeout)
 
@@ -260,7 +260,7 @@ def test_watchdog_turns_the_hang_into_an_error(tmp_path):
 def test_checksum_refuses_the_damaged_file_before_reading(tmp_path):
     (tmp_path / "r0").mkdir()
     wd = tmp_path / "r0"
-    r = subprocess.run([lmp_path(), "-echo", "none", "-log", "none"], input=SMALL, cwd=wd,
+    r = run_cmd([lmp_path(), "-echo", "none", "-log", "none"], input=SMALL, cwd=wd,
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 0
     subprocess.run("sha256sum r.bin > r.bin.sha256", shell=True, cwd=wd, check=True)

@@ -9,7 +9,7 @@ fluid the fluid's own kernel-averaged velocity extrapolated linearly through the
 (SaltDEM::noslip_offset), and with the boundary fill (fill 8) the wall line also stands for the
 part of the kernel it leaves empty.
 
-  film      the 190 m film of bench/salt_film.in (the paper's discs, h 28 m, sin 0.1, 800 m
+  film      the 190 m film of bench/validation/salt_film.in (the paper's discs, h 28 m, sin 0.1, 800 m
             wide, 300 s): u_s / analytic within 3 % with noslip surface fill 8 (measured
             0.988); the centre boundary gives 1.061 here (asserted above 1.03: what the fix
             changes)
@@ -27,7 +27,7 @@ import pytest
 from lmprun import ROOT, check_ok, run_lmp
 from test_salt_film import last_block, marker
 
-FILM_IN = (ROOT / "bench" / "salt_film.in").read_text()
+FILM_IN = (ROOT / "bench" / "validation" / "salt_film.in").read_text()
 PACK_IN = (ROOT / "tools" / "pack.in").read_text()
 ETA = 5e8
 
@@ -41,7 +41,7 @@ def pack(tmp_path_factory):
 
 
 def surface_ratio(run, workdir, rmax=15.625):
-    """u_s / analytic as bench/salt_film.py measures it (the mean of the top 2 rmax against
+    """u_s / analytic as bench/validation/salt_film.py measures it (the mean of the top 2 rmax against
     g sin (M/W) y_cm / eta, y_cm the profile's centre of mass above the wall discs' top)."""
     prof = last_block(workdir / "film_profile.txt")
     y, n, vx, dens = prof[:, 1], prof[:, 2], prof[:, 3], prof[:, 4]

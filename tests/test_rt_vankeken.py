@@ -1,5 +1,5 @@
 """Buoyancy of the SPH salt: the Rayleigh-Taylor benchmark of van Keken et al. (1997) in reduced
-form (bench/rt_vankeken.in at its coarsest resolution, 20 rows, 20 buoyancy times; the full
+form (bench/validation/rt_vankeken.in at its coarsest resolution, 20 rows, 20 buoyancy times; the full
 numbers are in docs/validation.md, section 4.5).
 
 Two fluid types of disc density 2160 and 2400 kg/m^3; the light layer's first Fourier mode grows
@@ -8,22 +8,19 @@ at the analytic Stokes rate (0.0109402 per t_b) within the error measured at thi
 0.943-0.964 over the windows 2-20 to 5-40 t_b), and does not grow at all when the two densities
 are equal."""
 import os
-import sys
 
 import numpy as np
 import pytest
 
 from lmprun import ROOT, lmp_path, run_cmd
+from saltdem_post import rayleigh_taylor as rt
 
-sys.path.insert(0, str(ROOT / "bench"))
-import rt_vankeken as rt  # noqa: E402
-
-MEASURED = 0.950     # gamma / analytic at n 20, fitted over 5-20 t_b (bench/rt_vankeken.in defaults)
+MEASURED = 0.950     # gamma / analytic at n 20, fitted over 5-20 t_b (bench/validation/rt_vankeken.in defaults)
 TOL = 0.03           # the spread of the fitted rate over reasonable windows at n 20 (0.943-0.964)
 
 
 def run_rt(tmp_path, name, tend=20, **var):
-    cmd = [lmp_path(), "-in", str(ROOT / "bench" / "rt_vankeken.in"), "-log", f"log.{name}",
+    cmd = [lmp_path(), "-in", str(ROOT / "bench" / "validation" / "rt_vankeken.in"), "-log", f"log.{name}",
            "-screen", "none", "-var", "name", name, "-var", "n", "20", "-var", "tend", str(tend)]
     for k, v in var.items():
         cmd += ["-var", k, str(v)]
@@ -34,7 +31,7 @@ def run_rt(tmp_path, name, tend=20, **var):
 
 
 def test_analytic_growth_rate():
-    """the Green's-function rate of bench/rt_vankeken.py is van Keken et al.'s analytic one"""
+    """the Green's-function rate of bench/validation/rt_vankeken.py is van Keken et al.'s analytic one"""
     assert rt.growth_rate() == pytest.approx(rt.GAMMA_VK, rel=1e-6)
     # a thinner layer grows more slowly, a taller box (walls further away) faster
     assert rt.growth_rate(0.15) < rt.growth_rate() < rt.growth_rate(0.25)

@@ -1,4 +1,4 @@
-"""A free-surface salt film on an incline (bench/salt_film.in; docs/validation.md, section 4.4):
+"""A free-surface salt film on an incline (bench/validation/salt_film.in; docs/validation.md, section 4.4):
 the SPH salt of pair saltdem/viscous (eta 5e8 Pa s, K 1e8 Pa, S 20) on a no-slip base of one
 line of touching wall discs (saltdem/wall, as the scenes' basements), free top, x periodic,
 gravity tilted by sin 0.1.  Its surface velocity against the analytic film's,
@@ -29,7 +29,7 @@ import pytest
 
 from lmprun import ROOT, assert_error, check_ok, run_lmp
 
-FILM_IN = (ROOT / "bench" / "salt_film.in").read_text()
+FILM_IN = (ROOT / "bench" / "validation" / "salt_film.in").read_text()
 PACK_IN = (ROOT / "tools" / "pack.in").read_text()
 ETA, SLOPE, SECONDS = 5e8, 0.1, 120.0
 # resolution: disc radii, smoothing length, wall disc radius

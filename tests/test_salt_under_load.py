@@ -1,6 +1,6 @@
 """The SPH salt under load (pair saltdem/viscous, fluid law): validation flows with a
-hydrostatic or overburden pressure, at two loads each (bench/salt_slope.in,
-bench/salt_couette.in; docs/validation.md, section 4.3).
+hydrostatic or overburden pressure, at two loads each (bench/validation/salt_slope.in,
+bench/validation/salt_couette.in; docs/validation.md, section 4.3).
 
 The plain SPH pressure gradient made the salt frictional under load: its pair forces carried a
 shear stress of about 0.5 % of the pressure that grew with the strain, so a layer flowing down a
@@ -25,8 +25,8 @@ import pytest
 
 from lmprun import ROOT, check_ok, run_lmp
 
-SLOPE_IN = (ROOT / "bench" / "salt_slope.in").read_text()
-COUETTE_IN = (ROOT / "bench" / "salt_couette.in").read_text()
+SLOPE_IN = (ROOT / "bench" / "validation" / "salt_slope.in").read_text()
+COUETTE_IN = (ROOT / "bench" / "validation" / "salt_couette.in").read_text()
 PACK_IN = ROOT / "tools" / "pack.in"
 RMIN, RMAX = 6.25, 15.625
 ETA, SLOPE, DT = 5e8, 0.0135, 0.007

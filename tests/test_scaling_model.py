@@ -1,4 +1,4 @@
-"""bench/scaling_model.py on the result of a tiny scene benchmark (serial, 2 MPI ranks cut
+"""bench/performance/scaling_model.py on the result of a tiny scene benchmark (serial, 2 MPI ranks cut
 vertically and horizontally, 4 MPI ranks):
 it runs, writes a well-formed model (constants with their sources, projections for P = 1..pmax,
 the full Expt 1 and 2 step counts), and its geometric ghost counts match the ghosts LAMMPS
@@ -24,16 +24,17 @@ PMAX, NODE = 6, 4
 def model(tmp_path_factory):
     out = tmp_path_factory.mktemp("scaling")
     env = dict(os.environ, SALTDEM_PYTHON="/usr/bin/python3")
-    p = run_cmd(["bash", str(ROOT / "bench" / "run-bench.sh"), "--lmp", lmp_path(),
+    p = run_cmd(["bash", str(ROOT / "bench" / "performance" / "run-bench.sh"), "--lmp", lmp_path(),
                         "--out", str(out), *TINY], capture_output=True, text=True, timeout=900,
                        env=env)
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
     # the benchmark's own scene as the "real" dump: exercises the calibration path
-    cmd = ["/usr/bin/python3", str(ROOT / "bench" / "scaling_model.py"), str(out / "results.json"),
+    cmd = ["/usr/bin/python3", str(ROOT / "bench" / "performance" / "scaling_model.py"), str(out / "results.json"),
            "--pmax", str(PMAX), "--node", str(NODE), "--scene-dump", str(out / "bench_settled.dump"),
            "--scene-size", "400", "100", "150",
            "--one-core-step", "0.0142", "--two-rank-step", "0.0083"]
-    p = run_cmd(cmd, capture_output=True, text=True, timeout=600)
+    p = run_cmd(cmd, capture_output=True, text=True, timeout=600,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT / "python")))
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
     res = json.loads((out / "results.json").read_text())
     return json.loads((out / "scaling-model.json").read_text()), res, p.stdout

@@ -2,21 +2,18 @@
 pressure profile (issue 18: the SPH sums weigh a partner as the particle's own material,
 PairSaltdemViscous::pair_weights; docs/validation.md, section 4.5).
 
-bench/rt_vankeken.in with a flat interface (amp 0) and the full weight on each fluid: 4 rows of
+bench/validation/rt_vankeken.in with a flat interface (amp 0) and the full weight on each fluid: 4 rows of
 light fluid (2160 kg/m^3) under 16 of heavy (2400 kg/m^3).  The heavy fluid's pressure gradient
 is its weight per area, and the light layer continues the heavy fluid's pressure at the
 interface with its own, smaller, gradient.  Before the volume-weighted sums a light particle
 counted a heavy neighbour's mass as if it were light: the light layer stood 3.5-4.4e6 Pa (15-17 %)
 above the hydrostatic pressure; now within 1 %."""
 import os
-import sys
 
 import numpy as np
 
 from lmprun import ROOT, lmp_path, run_cmd
-
-sys.path.insert(0, str(ROOT / "bench"))
-import rt_vankeken as rt  # noqa: E402
+from saltdem_post import rayleigh_taylor as rt
 
 G = 9.81
 H = 1000.0
@@ -25,7 +22,7 @@ K = 1e9
 
 
 def test_two_density_column_is_hydrostatic(tmp_path):
-    cmd = [lmp_path(), "-in", str(ROOT / "bench" / "rt_vankeken.in"), "-log", "log.hs",
+    cmd = [lmp_path(), "-in", str(ROOT / "bench" / "validation" / "rt_vankeken.in"), "-log", "log.hs",
            "-screen", "none", "-var", "name", "hs", "-var", "n", str(N), "-var", "amp", "0",
            "-var", "gravity", "full", "-var", "wall", "half", "-var", "S", "1",
            "-var", "tend", "15", "-var", "dump", "1", "-var", "K", str(K)]

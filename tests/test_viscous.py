@@ -36,28 +36,18 @@ import numpy as np
 import pytest
 
 from lmprun import ROOT, assert_error, check_ok, run_lmp
+from saltdem_post.channel import ChannelFlow, read_params
+
 CHANNEL = (ROOT / "tests" / "decks" / "channel.in").read_text()
 PARAMS = ROOT / "potentials" / "salt_paper.params"
 PACK_IN = ROOT / "tools" / "pack.in"
 
-
-def read_params(path=PARAMS):
-    """{name: value} of the 'variable NAME index VALUE' lines of a params file."""
-    vals = {}
-    for line in path.read_text().splitlines():
-        s = line.split("#")[0].split()
-        if len(s) == 4 and s[0] == "variable" and s[2] == "index":
-            vals[s[1]] = float(s[3])
-    return vals
-
-
-PAPER = read_params()
+PAPER = read_params(PARAMS)
 ETA, RHO, S_PAPER, DT = PAPER["eta"], PAPER["rho"], PAPER["S"], PAPER["dt"]
 CORRECTION = 1.047    # the style's default fluid viscosity correction (pair_style ... correction)
 RMIN, RMAX = PAPER["rmin"], PAPER["rmax"]
 PACK = dict(W=1000, H=500, seed=7)
 NSTEPS = 10000            # the channel deck runs 2 x NSTEPS, averages the second half
-EXCL = 3 * RMAX           # profile layers this close to a wall band are not fitted
 REYNOLDS_MAX = 0.05       # rho S V H / eta: above it inertia changes the flow
 
 
@@ -81,56 +71,12 @@ def max_diff(a, b, cols=(0, 1)):
 # the channel flows
 # ---------------------------------------------------------------------------
 
-class Channel:
-    """Outcome of tests/decks/channel.in: stress, profiles, thermo."""
+class Channel(ChannelFlow):
+    """The channel flow of a test run (an lmprun Run) at the paper's disc size and density."""
 
     def __init__(self, run, H, V=0.0, gx=0.0, eta=ETA, S=S_PAPER):
-        self.run, self.H, self.V, self.gx, self.eta, self.S = run, H, V, gx, eta, S
-        d = run.workdir
-        lines = (d / "channel_stress.txt").read_text().splitlines()
-        self.taus = [float(l.split()[1]) for l in lines if l.strip() and not l.startswith("#")]
-        self.tau = self.taus[-1]            # second half of the run
-        self.profiles = []
-        for line in (d / "channel_profile.txt").read_text().splitlines():
-            s = line.split()
-            if not s or s[0].startswith("#"):
-                continue
-            if len(s) == 3:
-                self.profiles.append([])
-            else:
-                self.profiles[-1].append([float(v) for v in s[1:]])
-        self.profiles = [np.array(p) for p in self.profiles]
-        self.rhob = float(re.search(r"salt mass per area: ([0-9.eE+-]+)", run.out).group(1))
-
-    def profile(self, k=-1):
-        y, n, vx = self.profiles[k].T
-        return y, n, vx
-
-    def interior(self, y):
-        return (y > 2 * RMAX + EXCL) & (y < self.H - 2 * RMAX - EXCL)
-
-    def fit(self, deg, k=-1):
-        """Polynomial fit of the interior profile: coefficients and R^2."""
-        y, n, vx = self.profile(k)
-        m = self.interior(y)
-        assert m.sum() >= 8, f"only {m.sum()} profile layers to fit"
-        p = np.polyfit(y[m], vx[m], deg)
-        res = vx[m] - np.polyval(p, y[m])
-        r2 = 1.0 - (res ** 2).sum() / ((vx[m] - vx[m].mean()) ** 2).sum()
-        return p, r2
-
-    @property
-    def rate(self):
-        return self.fit(1)[0][0]
-
-    @property
-    def eta_eff(self):
-        return self.tau / self.rate
-
-    @property
-    def reynolds(self):
-        vmax = self.V if self.V else np.abs(self.profile()[2]).max()
-        return RHO * self.S * vmax * (self.H - 4 * RMAX) / self.eta
+        super().__init__(run.workdir, run.out, H, RMAX, RHO, V, gx, eta=eta, S=S)
+        self.run = run
 
 
 @pytest.fixture(scope="module")

@@ -2,7 +2,9 @@
 turn them into strain fields, salt-thickness and flow measurements, and
 paper-style figures.  Command line: ``saltdem-post`` (see ``cli``); the
 calibration of materials is the subpackage ``calibration``
-(``saltdem-calibrate``)."""
+(``saltdem-calibrate``).  ``checkout`` finds the SaltDEM checkout and its
+``lmp``; ``channel`` and ``rayleigh_taylor`` read the validation runs that
+bench/ and tests/ share."""
 
 __version__ = "0.1.0"
 

@@ -12,7 +12,7 @@ from .dump import Frame, match_ids
 from .materials import MaterialMap
 
 
-def _median_diameter(frame: Frame, mask: np.ndarray) -> float:
+def median_diameter(frame: Frame, mask: np.ndarray) -> float:
     r = frame.radius[mask] if mask.any() else frame.radius
     return 2.0 * float(np.median(r))
 
@@ -123,8 +123,8 @@ def salt_thickness(frame: Frame, materials: Optional[MaterialMap] = None, bin_wi
     salt = materials.mask(types, "salt")
     model = salt | materials.mask(types, "cover")
     x, y, r = frame.x, frame.y, frame.radius
-    d_salt = _median_diameter(frame, salt)
-    bin_width = bin_width or 2.0 * _median_diameter(frame, model)
+    d_salt = median_diameter(frame, salt)
+    bin_width = bin_width or 2.0 * median_diameter(frame, model)
     gap = 0.5 * d_salt if gap is None else gap
     weld_thickness = d_salt if weld_thickness is None else weld_thickness
     if not model.any():
@@ -340,7 +340,7 @@ def vertical_profile(frame: Frame, x: float, quantity: str = "vx", materials: Op
     """
     materials = materials or MaterialMap()
     salt = materials.mask(frame["type"], "salt")
-    d = _median_diameter(frame, salt)
+    d = median_diameter(frame, salt)
     halfwidth = 2.0 * d if halfwidth is None else halfwidth
     bin_height = d if bin_height is None else bin_height
     sel = salt & (np.abs(frame.x - x) <= halfwidth)

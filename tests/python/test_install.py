@@ -4,6 +4,7 @@ package installs offline into a venv (python3 -m venv --system-site-packages,
 pip install --no-deps --no-build-isolation --no-index) and its console
 scripts saltdem-post and saltdem-calibrate run from there."""
 
+import ast
 import os
 import pathlib
 import shutil
@@ -36,6 +37,28 @@ def test_no_sys_path_edits_in_package():
     hits = [f"{p.relative_to(REPO)}:{n}" for p in [*PYDIR.rglob("*.py"), *(PYDIR / w for w in WRAPPERS)]
             for n, line in enumerate(p.read_text().splitlines(), 1) if "sys.path" in line]
     assert not hits, f"sys.path edits in python/: {hits}"
+
+
+def test_no_private_names_imported_across_modules():
+    """A helper that two modules share is public: no module imports another's _name."""
+    hits = [f"{p.relative_to(REPO)}:{node.lineno} {alias.name}" for p in PYDIR.rglob("*.py")
+            for node in ast.walk(ast.parse(p.read_text())) if isinstance(node, ast.ImportFrom)
+            for alias in node.names if alias.name.startswith("_") and not alias.name.startswith("__")]
+    assert not hits, f"private names imported across modules: {hits}"
+
+
+def test_calibration_looks_for_the_checkout_only_when_a_command_needs_it(tmp_path):
+    """Importing the calibration, its parser and 'report' never look for the checkout (an
+    installed package outside one works); a command that runs LAMMPS does."""
+    probe = ("import sys\nimport saltdem_post.checkout as c\n"
+             "def looked():\n    sys.exit('looked for the checkout')\n"
+             "c.find_repo = looked\n"
+             "from saltdem_post.calibration import cli\n"
+             "print(cli.main(['-q', '-o', sys.argv[1], 'report']))\n"
+             "cli.main(['-q', '-o', sys.argv[1], 'biaxial'])\n")
+    res = run([sys.executable, "-c", probe, tmp_path / "cal"], cwd=tmp_path, PYTHONPATH=str(PYDIR))
+    assert res.stdout.split() == ["2"], res.stdout + res.stderr
+    assert "no results.json" in res.stderr and "looked for the checkout" in res.stderr, res.stderr
 
 
 def test_version_is_the_packages():
@@ -127,7 +150,8 @@ def test_pip_install_console_scripts(tmp_path, fixture_path):
     res = run([bindir / "saltdem-calibrate", "-q", "-o", work / "cal", "--lmp", sys.executable, "biaxial"],
               cwd=work)
     assert res.returncode == 2 and "no SaltDEM checkout" in res.stderr, res.stdout + res.stderr
-    probe = "import saltdem_post.calibration.cli as c; print(c.REPO, c.DECKS.is_dir())"
+    probe = ("from saltdem_post.checkout import find_repo; p = find_repo(); "
+             "print(p, (p / 'examples' / 'calibration').is_dir())")
     for cwd, env in ((REPO / "docs", {}), (work, {"SALTDEM_ROOT": str(REPO)})):
         res = run([py, "-c", probe], cwd=cwd, **env)
         assert res.returncode == 0, res.stderr

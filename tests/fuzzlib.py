@@ -50,17 +50,17 @@ class Line:
 
     @staticmethod
     def parse(text, fixed=1, types=(), groups=(), styles=(), alt_style="none"):
-        """Split a command: the first `fixed` tokens are not mutated; tokens at the indices in
+        """Split a command: the first `fixed` tokens are not mutated (except a group among them); tokens at the indices in
         types/groups/styles have those kinds; the rest are num (if they read as a float) or
         word."""
         toks = []
         for k, t in enumerate(text.split()):
-            if k < fixed:
+            if k in groups:    # a fix's own group lies among its fixed tokens
+                kind = "group"
+            elif k < fixed:
                 kind = "fixed"
             elif k in types:
                 kind = "type"
-            elif k in groups:
-                kind = "group"
             elif k in styles:
                 kind = "style"
             else:
@@ -113,7 +113,7 @@ def mutations(line, ntypes=3):
     out.append(("line extra-value", base + " 1"))
     out.append(("line unknown-keyword", base + " bogus 1"))
     out.append(("line keyword-without-value", base + " bogus"))
-    nfixed = sum(1 for _, kind in toks if kind == "fixed")
+    nfixed = max((k + 1 for k, (_, kind) in enumerate(toks) if kind == "fixed"), default=0)
     out.append(("line no-arguments", line.text(toks[:nfixed])))
     return out
 

@@ -6,6 +6,13 @@ combinations of laws).  Every mutation must end in a clean LAMMPS error or be ac
 finite thermo output over its 10 steps; a crash (signal, abort, uncaught exception,
 segmentation fault, exit without an ERROR line, hang) or a non-finite thermo value fails.
 
+Every keyword of every style is in at least one target line (a style whose keywords exclude
+each other has a line per mode): fix saltdem/sediment in a box closed in x and y with room above
+the cover, fix saltdem/checksum beside a restart command, saltdem/read_restart of a file the
+deck writes first (then clear, the read, the set-up again and the usual run).  The other values
+of the keywords that choose a mode (toward left, at_target end, noslip centre, checksum
+optional, ...) are whole decks in COMBOS.  1645 cases (991 before the keyword targets).
+
 Cases run one lmp each, SALTDEM_FUZZ_JOBS at a time (default 2); SALTDEM_FUZZ_MAX N runs an
 evenly spread subset of N cases.  docs/reliability.md (Fuzzer) has the counts."""
 import collections
@@ -80,6 +87,7 @@ SLOTS = {
                   "density 2200 inertia 20 warn 10"],
     "wall": [],
     "timestep": ["saltdem/timestep 0.85"],
+    "extra": [],    # after the fixes: fix saltdem/sediment, saltdem/checksum (and their set-up)
 }
 TAIL = """thermo 2
 thermo_style custom step dt pe ke
@@ -102,7 +110,7 @@ def deck(pair="hybrid", dim=2, **slots):
         s[k] = [v] if isinstance(v, str) else list(v)
     lines = [HEAD2 if dim == 2 else HEAD3, GROUPS, *s["wall"], "neighbor 2.8 bin", style,
              *coeffs, "neigh_modify exclude type 3 3", "velocity mobile create 1e-3 7 loop geom",
-             *s["nve"], *s["motion"], *s["viscosity"]]
+             *s["nve"], *s["motion"], *s["viscosity"], *s["extra"]]
     if dim == 2:
         lines.append("fix e2d all enforce2d")
     lines += [*s["timestep"], TAIL]
@@ -137,6 +145,56 @@ def put_style(pair):
     def f(line, dim=2):
         return deck(pair, dim=dim, pair_style=line)
     return f
+
+
+def put_lines(slot, before=(), after=(), pair="hybrid", edit=None):
+    """A function of a line that puts it in the slot between the given set-up lines (they
+    stay valid); edit(deck, dim) changes the whole deck after."""
+    def f(line, dim=2):
+        d = deck(pair, dim=dim, **{slot: [*before, line, *after]})
+        return edit(d, dim) if edit else d
+    return f
+
+
+# fix saltdem/sediment needs a box closed in x and y, with room above the cover for the new
+# discs (type 2, the cover law; radii within the cover's 10.5 and the neighbour skin's half, and
+# at least 0.95 of its mass: 10.3-10.5); an epoch property, a drive variable and a window end
+# and an erosion envelope for the keywords that name them
+SED_PRE = ["fix ep all property/atom i_epoch ghost yes", "variable drv equal step",
+           "variable front equal 190", "variable env atom 170+0*x"]
+
+
+def sediment_box(d, dim):
+    if dim != 2:
+        return d    # refused in 3d before the box is looked at
+    return (d.replace("boundary p f p", "boundary f f p")
+            .replace("region box block 0 200 -50 200", "region box block -20 220 -50 300")
+            .replace("region inner block 0 200 0 200", "region inner block 0 190 0 190"))
+
+
+# saltdem/read_restart needs a restart file and its checksum: the deck writes them (restart
+# every 2 steps of a 4-step run, fix saltdem/checksum), clears, reads the older file and sets
+# up again what a restart file does not hold; the deck ends with the usual run
+RESTART_WRITE = ["restart 2 r.a r.b", "fix cs all saltdem/checksum"]
+
+
+def resume_setup(dim=2):
+    """What the deck gives again after saltdem/read_restart (the same fix IDs; pair hybrid
+    keeps no coefficients)."""
+    lines = ["comm_modify vel yes", "neighbor 2.8 bin", *PAIRS["hybrid"][1],
+             "neigh_modify exclude type 3 3", *SLOTS["nve"]]
+    if dim == 2:
+        lines += [*SLOTS["motion"]]
+    lines += [*SLOTS["viscosity"]]
+    if dim == 2:
+        lines.append("fix e2d all enforce2d")
+    return "\n".join(lines + [*SLOTS["timestep"], TAIL])
+
+
+def put_resume(line, dim=2):
+    d = deck("hybrid", dim=dim, extra=RESTART_WRITE)
+    assert d.endswith(TAIL)
+    return d[:-len(TAIL)] + "run 4\nclear\n" + line + "\n" + resume_setup(dim)
 
 
 TARGETS = [
@@ -174,6 +232,35 @@ TARGETS = [
     ("saltdem/wall", Line.parse("saltdem/wall 3 10 -30 190 -30 10 group w density 2200",
                                 types=(1,)), put_slot("wall")),
     ("saltdem/timestep", Line.parse(SLOTS["timestep"][0]), put_slot("timestep")),
+    # the keywords the lines above leave out: one more line per style (per mode where
+    # keywords exclude each other)
+    ("pair_style saltdem/viscous fill substeps noslip",
+     Line.parse("pair_style saltdem/viscous fill 4 substeps 2 noslip surface", fixed=2),
+     put_style("viscous-both")),
+    ("fix saltdem/viscosity natural contrast gravity",
+     Line.parse("fix vs salt saltdem/viscosity lambda 1e10 natural 5e18 rate 1 length 100 "
+                "density 2200 contrast 100 gravity 9.81", fixed=4, groups=(2,)),
+     put_slot("viscosity")),
+    ("saltdem/timestep substeps", Line.parse("saltdem/timestep 0.85 substeps 2"),
+     put_slot("timestep")),
+    ("fix saltdem/sediment fill", Line.parse(
+        "fix sed cover saltdem/sediment fill type 2 base 230 every 5 rmin 10.3 rmax 10.5 "
+        "dist paper density 2200 seed 7 overlap 0.05 epoch i_epoch offset 10 group mobile "
+        "erode none x 10 190 foreset 0.1 settle 3 1e3 maxper 50", fixed=4, types=(6,), groups=(2, 28)),
+     put_lines("extra", before=SED_PRE, edit=sediment_box)),
+    ("fix saltdem/sediment rate", Line.parse(
+        "fix sed cover saltdem/sediment rate 1e4 type 2 base 230 every 5 drive v_drv "
+        "rmin 10.3 rmax 10.5 dist uniform density 2200 seed 7 length 100 x 10 v_front "
+        "erode 260 erode_group cover down 0 -1", fixed=4, types=(7,), groups=(2, 32)),
+     put_lines("extra", before=SED_PRE, edit=sediment_box)),
+    ("fix saltdem/sediment none", Line.parse(
+        "fix sed cover saltdem/sediment none every 5 erode v_env erode_group cover",
+        fixed=4, groups=(2, 10)),
+     put_lines("extra", before=SED_PRE, edit=sediment_box)),
+    ("fix saltdem/checksum", Line.parse("fix cs all saltdem/checksum", fixed=4, groups=(2,)),
+     put_lines("extra", before=["restart 5 r.a r.b"])),
+    ("saltdem/read_restart", Line.parse("saltdem/read_restart r.a checksum required timeout 30"),
+     put_resume),
 ]
 
 # other combinations of laws and setups, each a whole deck (expected: error or accepted)
@@ -277,6 +364,51 @@ COMBOS["fix adapt: salt diameter halved during the run"] = deck(
                          "fix ad salt adapt 1 atom diameter v_d"]).replace(
     "atom_style sphere", "atom_style sphere 1")
 
+# the other values of the keywords that choose a mode (one deck each, not mutated): the motion
+# fixes toward the left and ending the run at a target reached within it (the target 3.5 time
+# steps of motion, after saltdem/timestep has set the step), the boundary of the fluid, the
+# salt the denser, deposition driven by a fix's displacement, a checksum beside a single and a
+# multi-file restart, restart files without or with a stale checksum
+AT_END = "rate 1 target $(3.5*dt) at_target end"
+for label, line in [
+        ("fault toward left, at_target end reached", f"fix mv rb saltdem/fault dip 60 {AT_END} toward left"),
+        ("keystone at_target end reached", f"fix mv ks saltdem/keystone dip 60 keystone key {AT_END}"),
+        ("tiltwall toward left, g without gravity group",
+         f"fix mv rb saltdem/tiltwall tilt 5 {AT_END} toward left g 9.81")]:
+    COMBOS[f"{label} during the run"] = deck(
+        "hybrid", motion=[], timestep=[*SLOTS["timestep"], line])
+for v in ("centre", "center"):
+    COMBOS[f"viscous noslip {v}"] = deck(
+        "viscous-both", pair_style=f"pair_style saltdem/viscous fill 4 noslip {v}")
+COMBOS["viscosity contrast negative (the salt the denser), default gravity"] = deck(
+    "hybrid", viscosity=[SLOTS["viscosity"][0] + " contrast -100"])
+COMBOS["sediment fill every drive displacement of the fault (f_mv[1])"] = sediment_box(deck(
+    "hybrid", timestep=[*SLOTS["timestep"],
+                        "fix sed cover saltdem/sediment fill type 2 base 230 every $(2*dt) "
+                        "drive f_mv[1] rmin 10.3 rmax 10.5 density 2200 seed 3"]), 2)
+COMBOS["sediment rate 0, erosion above an equal-style level"] = sediment_box(deck(
+    "hybrid", extra=["variable sea equal 185", "fix sed cover saltdem/sediment rate 0 type 2 "
+                     "base 230 every 5 rmin 10.3 rmax 10.5 density 2200 seed 3 erode v_sea"]), 2)
+for label, rs in [("a single file per step (r.*)", "restart 3 r.*"),
+                  ("one file name (r.bin: the step appended)", "restart 3 r.bin"),
+                  ("a multi-file restart (r.%)", "restart 3 r.%"),
+                  ("no restart command", "")]:
+    COMBOS[f"checksum with {label}"] = deck(
+        "hybrid", extra=[l for l in (rs, "fix cs all saltdem/checksum") if l])
+for label, mid, read in [
+        ("a file without checksum, checksum optional", "write_restart r.c",
+         "saltdem/read_restart r.c checksum optional"),
+        ("a file without checksum, checksum required", "write_restart r.c",
+         "saltdem/read_restart r.c checksum required"),
+        ("a file rewritten after its checksum", "write_restart r.a", "saltdem/read_restart r.a"),
+        ("the newer file of the pair, no watchdog", "", "saltdem/read_restart r.b timeout 0"),
+        ("a missing file", "", "saltdem/read_restart r.x"),
+        ("plain read_restart of a checksummed file", "", "read_restart r.a")]:
+    d = put_resume(read)
+    if mid:
+        d = d.replace("run 4\nclear\n", f"run 4\n{mid}\nclear\n")
+    COMBOS[f"read_restart: {label}"] = d
+
 
 def build_cases():
     cases = []
@@ -314,6 +446,10 @@ def test_no_crash_no_nonfinite(outcomes, target):
     cases = [c for c in CASES if c.target == target]
     msg = report(cases, outcomes)
     assert not msg, msg
+    infra = report(cases, outcomes, kinds=("infra",))
+    if infra:    # lmp never ran for these cases: neither a pass nor a crash
+        pytest.fail("INFRASTRUCTURE FAILURE, not a test result: Open MPI failed to start after "
+                    "retries for\n" + infra, pytrace=False)
 
 
 @pytest.mark.parametrize("target", sorted({c.target for c in CASES if c.label == "valid"}))

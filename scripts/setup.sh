@@ -4,7 +4,7 @@
 # how to install it, and exits non-zero.
 set -euo pipefail
 pkgs=(cmake ninja-build g++ make libopenmpi-dev openmpi-bin xz-utils ca-certificates
-      python3 python3-numpy python3-scipy python3-matplotlib python3-pytest
+      python3 python3-numpy python3-scipy python3-matplotlib python3-pytest python3-yaml
       python3-pip python3-venv python3-setuptools python3-wheel)
 
 if [ ! -f /etc/debian_version ] || ! command -v dpkg-query >/dev/null; then

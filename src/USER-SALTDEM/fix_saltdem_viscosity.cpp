@@ -27,13 +27,13 @@
 
 #include "fix_saltdem_viscosity.h"
 
+#include "pair_saltdem.h"
 #include "saltdem_check.h"
 
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
 #include "force.h"
-#include "pair.h"
 #include "update.h"
 
 #include <algorithm>
@@ -145,13 +145,13 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
 
   // set the viscosity of the salt's pair style now, so that the next run
   // (and its stable time step check) uses it: every saltdem/viscous sub-style of a hybrid
-  const auto salts = viscous_pairs();
+  const auto salts = PairSaltdem::saltdem_styles(lmp, "saltdem/viscous");
   if (salts.empty())
     error->all(FLERR,
                "Fix {} needs pair style saltdem/viscous (alone or in pair_style hybrid) "
                "with its coefficients set before the fix is defined",
                style);
-  for (Pair *pair : salts) {
+  for (PairSaltdem *pair : salts) {
     int dim = 0;
     auto eta = (double **) pair->extract("eta", dim);
     if (!eta || dim != 2) continue;    // coefficients not allocated yet
@@ -185,27 +185,13 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                    style, lambda, eta_model, eta_natural, unit_label("Pa s"), npairs);
 }
 
-/* every saltdem/viscous style: the pair style or the sub-styles of pair hybrid (pair_match
-   returns the n-th of them, and the only one again past the last) */
-
-std::vector<Pair *> FixSaltdemViscosity::viscous_pairs()
-{
-  std::vector<Pair *> salts;
-  for (int n = 1; n <= 64; n++) {
-    Pair *p = force->pair_match("saltdem/viscous", 0, n);
-    if (!p || std::find(salts.begin(), salts.end(), p) != salts.end()) break;
-    salts.push_back(p);
-  }
-  return salts;
-}
-
 /* S: what the salt's pair styles report through extract("inertia") (the inertia factor of
    the fix saltdem/nve integrating the salt's discs); the largest of several.  Collective. */
 
-double FixSaltdemViscosity::salt_inertia(const std::vector<Pair *> &salts)
+double FixSaltdemViscosity::salt_inertia(const std::vector<PairSaltdem *> &salts)
 {
   double s = 1.0;
-  for (Pair *pair : salts) {
+  for (PairSaltdem *pair : salts) {
     int dim = 0;
     auto v = (double *) pair->extract("inertia", dim);
     if (v) s = MAX(s, *v);
@@ -245,7 +231,7 @@ int FixSaltdemViscosity::setmask()
 
 void FixSaltdemViscosity::init()
 {
-  const auto salts = viscous_pairs();
+  const auto salts = PairSaltdem::saltdem_styles(lmp, "saltdem/viscous");
   if (salts.empty())
     error->all(FLERR,
                "Fix {} {} needs pair style saltdem/viscous (alone or in pair_style "

@@ -53,8 +53,7 @@ class FixSaltdemViscosity : public Fix {
   int npairs;              // type pairs whose viscosity the fix set
   double reported;         // the S of the summary in the log (0: none yet)
 
-  std::vector<class Pair *> viscous_pairs();
-  double salt_inertia(const std::vector<class Pair *> &);
+  double salt_inertia(const std::vector<class PairSaltdem *> &);
   void check_finite();
   double model_time() const;
   std::string unit_label(const char *si) const;

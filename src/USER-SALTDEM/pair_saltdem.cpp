@@ -33,6 +33,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -143,12 +144,11 @@ void PairSaltdem::init_style()
   // number (rolling switched) drops the history instead of misreading it
   if (history && !fix_history) {
     std::string fid = fmt::format("{}{}", hist_id, instance_me);
-    if (force->pair != this)
-      for (int n = 1; n <= 64; n++)
-        if (force->pair_match(name, 0, n) == this) {
-          fid = fmt::format("{}_SUB{}", hist_id, n);
-          break;
-        }
+    if (force->pair != this) {
+      const auto subs = saltdem_styles(lmp, name);
+      const auto at = std::find(subs.begin(), subs.end(), this);
+      if (at != subs.end()) fid = fmt::format("{}_SUB{}", hist_id, 1 + (at - subs.begin()));
+    }
     fid += fmt::format("_N{}", size_history);
     auto cmd = fmt::format("{} all NEIGH_HISTORY {}", fid, size_history);
     fix_history = dynamic_cast<FixNeighHistory *>(
@@ -231,14 +231,14 @@ double PairSaltdem::stable_limit(std::string &why, bool cached)
   return why.empty() ? 0.0 : best;
 }
 
-/* every SaltDEM pair style present: pair_match() returns the n-th matching sub-style of a
-   hybrid, the only one again past the last (or nullptr past the last of several) */
+/* pair_match() returns the n-th matching sub-style of a hybrid, the only one again past the
+   last (or nullptr past the last of several), and a matching pair style for every n */
 
-std::vector<PairSaltdem *> PairSaltdem::saltdem_styles(LAMMPS *lmp)
+std::vector<PairSaltdem *> PairSaltdem::saltdem_styles(LAMMPS *lmp, const std::string &style)
 {
   std::vector<PairSaltdem *> styles;
   for (int n = 1;; n++) {
-    auto pair = dynamic_cast<PairSaltdem *>(lmp->force->pair_match("saltdem/", 0, n));
+    auto pair = dynamic_cast<PairSaltdem *>(lmp->force->pair_match(style, 0, n));
     if (!pair || (!styles.empty() && pair == styles.back())) break;
     styles.push_back(pair);
   }

@@ -67,6 +67,13 @@ class PairSaltdem : public Pair {
   // makes them: for saltdem/timestep, which needs the stable limit before a run's init
   void init_coeffs();
 
+  // the SaltDEM pair styles present whose style name matches `style` (a pattern, as
+  // Force::pair_match: "saltdem/" for all, "saltdem/viscous" for the salt's, /omp included):
+  // the pair style, or those sub-styles of pair hybrid in their order.  The one walk over the
+  // sub-styles: every style and fix that looks for SaltDEM styles uses it
+  static std::vector<PairSaltdem *> saltdem_styles(class LAMMPS *lmp,
+                                                   const std::string &style = "saltdem/");
+
   // the stable limit of every SaltDEM pair style present (the pair style, or the SaltDEM
   // sub-styles of pair hybrid, in their order), and the smallest of them (pair nullptr: nothing
   // limits the time step).  A limit that is not a finite positive number stops the run with an
@@ -77,7 +84,6 @@ class PairSaltdem : public Pair {
     double dt;
     std::string why;
   };
-  static std::vector<PairSaltdem *> saltdem_styles(class LAMMPS *lmp);
   static Limit smallest_limit(class LAMMPS *lmp, const std::string &who,
                               std::vector<Limit> *each = nullptr, bool cached = false);
 

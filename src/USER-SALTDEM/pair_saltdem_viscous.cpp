@@ -921,13 +921,9 @@ double PairSaltdemViscous::init_one(int i, int j)
 
 std::vector<PairSaltdemViscous *> PairSaltdemViscous::substyles() const
 {
-  if (force->pair == this) return {const_cast<PairSaltdemViscous *>(this)};
   std::vector<PairSaltdemViscous *> out;
-  for (int n = 1; n <= 64; n++) {
-    auto *s = dynamic_cast<PairSaltdemViscous *>(force->pair_match(name, 0, n));
-    if (!s) break;
-    out.push_back(s);
-  }
+  for (auto *s : saltdem_styles(lmp, name))
+    if (auto *v = dynamic_cast<PairSaltdemViscous *>(s)) out.push_back(v);
   return out;
 }
 

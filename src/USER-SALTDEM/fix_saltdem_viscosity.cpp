@@ -27,7 +27,7 @@
 
 #include "fix_saltdem_viscosity.h"
 
-#include "pair_saltdem.h"
+#include "pair_saltdem_viscous.h"
 #include "saltdem_check.h"
 
 #include "atom.h"
@@ -169,7 +169,7 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                style);
   // the inertia factor of the salt's discs as far as the integrators are defined yet (init()
   // reads it again): the Reynolds number is also wanted between runs
-  if (inertia_given == 0.0) inertia = salt_inertia(salts);
+  if (inertia_given == 0.0) inertia = salt_inertia(salts, true);
 
   t0 = model_time();
   vector_flag = 1;
@@ -185,16 +185,19 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                    style, lambda, eta_model, eta_natural, unit_label("Pa s"), npairs);
 }
 
-/* S: what the salt's pair styles report through extract("inertia") (the inertia factor of
-   the fix saltdem/nve integrating the salt's discs); the largest of several.  Collective. */
+/* S: the inertia factor of the fix saltdem/nve integrating the salt's discs, as the salt's
+   pair styles report it; the largest of several.  now: collective */
 
-double FixSaltdemViscosity::salt_inertia(const std::vector<PairSaltdem *> &salts)
+double FixSaltdemViscosity::salt_inertia(const std::vector<PairSaltdem *> &salts, bool now)
 {
   double s = 1.0;
   for (PairSaltdem *pair : salts) {
+    auto salt = dynamic_cast<PairSaltdemViscous *>(pair);
     int dim = 0;
-    auto v = (double *) pair->extract("inertia", dim);
-    if (v) s = MAX(s, *v);
+    if (now && salt)
+      s = MAX(s, salt->find_salt_inertia());
+    else if (auto v = (double *) pair->extract("inertia", dim))
+      s = MAX(s, *v);
   }
   return s;
 }
@@ -237,7 +240,7 @@ void FixSaltdemViscosity::init()
                "Fix {} {} needs pair style saltdem/viscous (alone or in pair_style "
                "hybrid); the pair style was changed since the fix was defined",
                style, id);
-  const double s = salt_inertia(salts);
+  const double s = salt_inertia(salts, false);
   if (inertia_given > 0.0 && fabs(inertia_given - s) > 1e-12 * s)
     error->all(FLERR,
                "Fix {} {}: inertia {} differs from the inertia factor {} of the salt's "

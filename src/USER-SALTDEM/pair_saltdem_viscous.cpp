@@ -334,6 +334,8 @@ void PairSaltdemViscous::init_style()
   }
   // the sub-steps move the atoms that a fix integrates, with the inertia it gives them
   integrators = find_integrators();
+  // (here, where every rank takes part: extract() may be called by one rank alone)
+  salt_inertia = find_salt_inertia();
   if (any_fluid && noslip_surface && comm->me == 0)
     utils::logmesg(lmp,
                    "Pair style {}: no-slip at the surfaces of the boundary discs (noslip "
@@ -1095,7 +1097,7 @@ double PairSaltdemViscous::find_salt_inertia()
 
 /* "eta": per type pair viscosity (dim 2), read and changed by fix adapt and
    fix saltdem/viscosity; "calibration": dashpot per unit viscosity; "inertia": the inertia
-   factor of the salt's discs (find_salt_inertia(), collective: every rank must ask) */
+   factor of the salt's discs as of the last init (find_salt_inertia()) */
 
 void *PairSaltdemViscous::extract(const char *str, int &dim)
 {
@@ -1105,9 +1107,6 @@ void *PairSaltdemViscous::extract(const char *str, int &dim)
   }
   dim = 0;
   if (strcmp(str, "calibration") == 0) return (void *) &calibration;
-  if (strcmp(str, "inertia") == 0) {
-    salt_inertia = find_salt_inertia();
-    return (void *) &salt_inertia;
-  }
+  if (strcmp(str, "inertia") == 0) return (void *) &salt_inertia;
   return nullptr;
 }

@@ -62,6 +62,9 @@ class PairSaltdemViscous : public PairSaltdem {
   void kernel_density(double *out, double *interior);
   // the viscous sub-steps (substeps > 1; the density fix calls it once all forces are in)
   void apply_substeps();
+  // the inertia factor S of the viscous discs (what extract("inertia") gives as of the last
+  // init).  Collective: every rank must call it
+  double find_salt_inertia();
 
   // the force law, inlined into the shared pair loop (PairSaltdem::loop; defined in
   // saltdem_pair_loop.h): FLUID pairs need only positions and velocities of the centres and
@@ -179,13 +182,12 @@ class PairSaltdemViscous : public PairSaltdem {
   std::vector<std::string> coeff_names() const override;
   void pack_coeffs(int, int, double *) const override;
   void unpack_coeffs(int, int, const double *) override;
-  double find_salt_inertia();
   // the time step check: the viscosities and calibration it saw (a change during the run,
   // e.g. by fix adapt, is checked again), and the inertial masses per disc volume it used
   void limits_checked() override;
   std::vector<std::vector<double>> eta_checked;
   double calibration_checked;
-  double salt_inertia;    // extract("inertia"): the inertia factor of the salt's discs
+  double salt_inertia;    // extract("inertia"): find_salt_inertia() at the last init
 };
 
 }    // namespace LAMMPS_NS

@@ -474,15 +474,17 @@ void PairSaltdem::read_restart_settings(FILE *fp)
   int version = 0;
   if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
   MPI_Bcast(&version, 1, MPI_INT, 0, world);
-  if (version < oldest_restart_version() || version > restart_version())
+  const auto reads = restart_versions_read();
+  if (std::find(reads.begin(), reads.end(), version) == reads.end()) {
+    std::string list = fmt::format("layout{} {}", reads.size() > 1 ? "s" : "", reads[0]);
+    for (size_t k = 1; k < reads.size(); k++)
+      list += fmt::format("{}{}", k + 1 < reads.size() ? ", " : " and ", reads[k]);
     error->all(FLERR,
                "Pair style {}: the restart file holds its coefficients in layout version {}, this "
                "version of the style reads {}. Continue the run with the SaltDEM version that "
                "wrote it, or start again from a data file (write_data) with this one",
-               name, version,
-               oldest_restart_version() == restart_version()
-                   ? fmt::format("layout {}", restart_version())
-                   : fmt::format("layouts {} to {}", oldest_restart_version(), restart_version()));
+               name, version, list);
+  }
   layout_read = version;
   const auto settings = setting_names();
   read_names(fp, settings, "settings");

@@ -203,9 +203,10 @@ class PairSaltdem : public Pair {
   // stops read_restart with a message naming both.
   static constexpr double RESTART_MARK = -20261214.0;    // SaltDEM::RESTART_MARK (saltdem_check.h)
   virtual int restart_version() const = 0;
-  // the oldest layout a style still reads (its setting_names() and unpack_settings() then
-  // follow layout_read, the version of the file being read; 0 outside read_restart)
-  virtual int oldest_restart_version() const { return restart_version(); }
+  // the layouts a style reads, in order: its own and older ones that a released version wrote
+  // (its setting_names() and unpack_settings() then follow layout_read, the version of the
+  // file being read; 0 outside read_restart)
+  virtual std::vector<int> restart_versions_read() const { return {restart_version()}; }
   int layout_read;
   virtual std::vector<std::string> setting_names() const = 0;
   virtual void pack_settings(double *) const = 0;    // in the order of setting_names()

@@ -1026,9 +1026,8 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
 
 std::vector<std::string> PairSaltdemViscous::setting_names() const
 {
-  // (the settings of the layout being read: 1 before fill, 2 before substeps, 3 before noslip)
+  // (the settings of the layout being read: 1 before fill and substeps, 3 before noslip)
   if (layout_read == 1) return {"calibration", "correction", "dtfactor", "viscfactor"};
-  if (layout_read == 2) return {"calibration", "correction", "dtfactor", "viscfactor", "fill"};
   if (layout_read == 3)
     return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps"};
   return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps", "noslip"};
@@ -1052,7 +1051,7 @@ void PairSaltdemViscous::unpack_settings(const double *v)
   dtfactor = v[2];
   viscfactor = v[3];
   fill_max = (layout_read == 1) ? DEFAULT_FILL_MAX : v[4];
-  substeps = (layout_read == 1 || layout_read == 2) ? 1 : (int) v[5];
+  substeps = (layout_read == 1) ? 1 : (int) v[5];
   noslip_surface = (layout_read >= 4) && v[6] != 0.0;
 }
 

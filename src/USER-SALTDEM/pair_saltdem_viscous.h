@@ -172,10 +172,10 @@ class PairSaltdemViscous : public PairSaltdem {
   double range(int i, int j) const override;
   double range_abs(int i, int j) const override;
   void pair_limit(int, int, double, double, bool, double &, std::string &) override;
-  // 2: the setting fill, 3: substeps, 4: noslip; layouts 1-3 are read (fill 1, substeps 1,
-  // noslip centre)
+  // 2: the setting fill, 3: substeps, 4: noslip; layouts 1 and 3 are read (fill 1, substeps
+  // 1, noslip centre); layout 2 was never released
   int restart_version() const override { return 4; }
-  int oldest_restart_version() const override { return 1; }
+  std::vector<int> restart_versions_read() const override { return {1, 3, 4}; }
   std::vector<std::string> setting_names() const override;
   void pack_settings(double *) const override;
   void unpack_settings(const double *) override;

@@ -51,7 +51,7 @@ class PairSaltdemCohesive : public PairSaltdem {
           double *f, double *ti, double *tj, double &evdwl, double *) const;
 
  protected:
-  SaltDEM::CohesiveParams **params;    // per type pair coefficients (saltdem_contact.h)
+  SaltDEM::CohesiveParams **params;    // per type pair coefficients (saltdem_contact_cohesive.h)
   bool rolling;                        // any pair with rolling resistance: 3 more history values
   double dt;
 

@@ -18,7 +18,7 @@
    pair saltdem/viscous: the linear Newtonian salt, and the no-slip
    boundary contact of cover-salt, salt-wall and cover-wall pairs.  The laws
    are SaltDEM::viscous_fluid_force and viscous_contact_force
-   (saltdem_contact.h); this file turns the requested viscosity into dashpot
+   (saltdem_contact_viscous.h); this file turns the requested viscosity into dashpot
    coefficients, carries the fluid's density and sets the stable dt.
 ------------------------------------------------------------------------- */
 
@@ -26,7 +26,7 @@
 
 #include "fix_saltdem_density.h"
 #include "saltdem_check.h"
-#include "saltdem_contact.h"
+#include "saltdem_contact_viscous.h"
 #include "saltdem_pair_loop.h"
 
 #include "atom.h"

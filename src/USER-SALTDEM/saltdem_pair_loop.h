@@ -26,7 +26,8 @@
 #include "pair_saltdem.h"
 #include "pair_saltdem_cohesive.h"
 #include "pair_saltdem_viscous.h"
-#include "saltdem_contact.h"
+#include "saltdem_contact_cohesive.h"
+#include "saltdem_contact_viscous.h"
 
 #include "atom.h"
 #include "domain.h"

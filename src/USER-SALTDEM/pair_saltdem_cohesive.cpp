@@ -23,6 +23,7 @@
 #include "pair_saltdem_cohesive.h"
 
 #include "saltdem_check.h"
+#include "saltdem_cohesive_law.h"
 #include "saltdem_contact_cohesive.h"
 #include "saltdem_pair_loop.h"
 
@@ -64,7 +65,12 @@ void PairSaltdemCohesive::allocate_params(int n)
 
 void PairSaltdemCohesive::compute(int eflag, int vflag)
 {
-  compute_serial(this, eflag, vflag);
+  compute_serial(law(), eflag, vflag);
+}
+
+SaltDEM::CohesiveLaw PairSaltdemCohesive::law() const
+{
+  return {params, rolling, dt};
 }
 
 void *PairSaltdemCohesive::pair_params(int i, int j)

@@ -149,7 +149,7 @@ namespace SaltDEM {
 
   /* FLUID: the SPH pressure pair matrix pm = mj A_i + mi A_j from the pressure matrices of
    particles i and j (mj: the mass j counts with in i's sums, mu_ij, and mi = mu_ji; see
-   PairSaltdemViscous::pair_weights), where fi, fj say whether each carries a pressure (its own
+   SphFields::pair_weights), where fi, fj say whether each carries a pressure (its own
    pair is FLUID with K > 0).  The boundary rule: a particle that carries none (a wall, the
    cover, a fluid with K = 0) mirrors its partner's pressure and correction, so the fluid's
    pressure pushes on it as on more fluid; two such particles exert none. */

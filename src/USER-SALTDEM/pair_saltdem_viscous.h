@@ -36,6 +36,8 @@ namespace SaltDEM {
 }    // namespace SaltDEM
 
 class PairSaltdemViscous : public PairSaltdem {
+  // the sub-steps read the fields, integrators and tallies of the style and use its
+  // communication
   friend class SaltdemViscousSubsteps;
 
  public:

@@ -538,7 +538,7 @@ double PairSaltdemViscous::init_one(int i, int j)
 }
 
 /* the saltdem/viscous styles of the run in order: this one alone, or the sub-styles of this
-   name under pair hybrid (pair_match ignores the index when the pair is not hybrid) */
+   name under pair hybrid (PairSaltdem::saltdem_styles) */
 
 std::vector<PairSaltdemViscous *> PairSaltdemViscous::substyles() const
 {

@@ -36,8 +36,8 @@ def test_licence_and_author_header():
 
 def test_style_headers_include_only_their_base_class():
     """A style header includes the header of its base class(es) and nothing else, uses no
-    'using' statements, and declares no law or loop bodies (those live in saltdem_pair_loop.h,
-    which only .cpp files include)."""
+    'using' statements, and declares no law or loop bodies (those live in saltdem_pair_loop.h
+    and the law headers, which only .cpp files include)."""
     seen = 0
     for f in package_files():
         if f.suffix != ".h":
@@ -63,11 +63,19 @@ def test_style_headers_include_only_their_base_class():
                           ("fix_saltdem_motion.h", {"fix.h"})]:
         includes = re.findall(r'^#include [<"](.+?)[">]', (PKG / name).read_text(), re.M)
         assert set(includes) == allowed, (name, includes)
+    # the shared loop knows no concrete style: each law is a policy it is handed, defined in
+    # the style's law header; only .cpp files include the loop and the law headers
     loop = (PKG / "saltdem_pair_loop.h").read_text()
-    assert "PairSaltdem::loop(" in loop and "PairSaltdemCohesive::law(" in loop
+    assert "PairSaltdem::loop(" in loop
+    assert not re.search(r"PairSaltdem(Cohesive|Viscous)|_law\.h", loop)
+    for law, name in [("saltdem_cohesive_law.h", "CohesiveLaw"),
+                      ("saltdem_viscous_law.h", "ViscousLaw")]:
+        assert f"struct {name}" in (PKG / law).read_text(), law
     for f in package_files():
         if f.suffix == ".h" and f.name != "saltdem_pair_loop.h":
-            assert '#include "saltdem_pair_loop.h"' not in f.read_text(), f.name
+            text = f.read_text()
+            assert '#include "saltdem_pair_loop.h"' not in text, f.name
+            assert not re.search(r'#include "saltdem_\w+_law\.h"', text), f.name
 
 
 OMP = re.compile(r"#pragma omp|[<\"]omp\.h[>\"]|omp_compat\.h|_OPENMP|comm->nthreads|Suffix::OMP|"

@@ -1,5 +1,5 @@
 """Tests of pair_style saltdem/cohesive (src/USER-SALTDEM/pair_saltdem_cohesive.*,
-law in saltdem_contact.h: cohesive_force).
+law in saltdem_contact_cohesive.h: cohesive_force).
 
 Every test runs small LAMMPS decks through the `lmp` fixture (tests/conftest.py)
 and checks numbers against the closed-form contact law:

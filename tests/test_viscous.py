@@ -1,6 +1,6 @@
 """Tests of pair_style saltdem/viscous and fix saltdem/nve
 (src/USER-SALTDEM/pair_saltdem_viscous.*, fix_saltdem_nve.*, law in
-saltdem_contact.h: viscous_force).
+saltdem_contact_viscous.h: viscous_fluid_force, viscous_contact_force).
 
 The salt is a linear Newtonian fluid of viscosity eta.  Its discs interact by
 the Morris SPH viscosity (Wendland C2 kernel, support 2h, volumes m/rho from a

@@ -27,7 +27,7 @@
 
 #include "pair_saltdem_viscous.h"
 #include "saltdem_check.h"
-#include "saltdem_contact.h"
+#include "saltdem_contact_viscous.h"
 
 #include "atom.h"
 #include "comm.h"

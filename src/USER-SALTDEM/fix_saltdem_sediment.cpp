@@ -31,6 +31,7 @@
 
 #include "fix_saltdem_sediment.h"
 
+#include "pair_saltdem.h"
 #include "saltdem_check.h"
 
 #include "arg_info.h"
@@ -45,7 +46,6 @@
 #include "math_const.h"
 #include "modify.h"
 #include "neighbor.h"
-#include "pair.h"
 #include "update.h"
 #include "variable.h"
 
@@ -469,19 +469,8 @@ void FixSaltdemSediment::check_in_box(double level, const char *kw)
 
 bool FixSaltdemSediment::has_cover_law(int itype)
 {
-  Pair *p = force->pair;
-  if (!p || !force->pair_style) return false;
-  if (utils::strmatch(force->pair_style, "^saltdem/cohesive"))
-    return p->allocated && p->setflag[itype][itype];
-  if (utils::strmatch(force->pair_style, "^hybrid")) {
-    Pair *prev = nullptr;
-    for (int n = 1; n <= 64; n++) {
-      Pair *q = force->pair_match("saltdem/cohesive", 0, n);
-      if (!q || q == prev) break;
-      if (q->allocated && q->setflag[itype][itype]) return true;
-      prev = q;
-    }
-  }
+  for (PairSaltdem *p : PairSaltdem::saltdem_styles(lmp, "saltdem/cohesive"))
+    if (p->allocated && p->setflag[itype][itype]) return true;
   return false;
 }
 

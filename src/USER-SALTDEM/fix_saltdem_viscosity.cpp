@@ -27,13 +27,13 @@
 
 #include "fix_saltdem_viscosity.h"
 
+#include "pair_saltdem_viscous.h"
 #include "saltdem_check.h"
 
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
 #include "force.h"
-#include "pair.h"
 #include "update.h"
 
 #include <algorithm>
@@ -145,13 +145,13 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
 
   // set the viscosity of the salt's pair style now, so that the next run
   // (and its stable time step check) uses it: every saltdem/viscous sub-style of a hybrid
-  const auto salts = viscous_pairs();
+  const auto salts = PairSaltdem::saltdem_styles(lmp, "saltdem/viscous");
   if (salts.empty())
     error->all(FLERR,
                "Fix {} needs pair style saltdem/viscous (alone or in pair_style hybrid) "
                "with its coefficients set before the fix is defined",
                style);
-  for (Pair *pair : salts) {
+  for (PairSaltdem *pair : salts) {
     int dim = 0;
     auto eta = (double **) pair->extract("eta", dim);
     if (!eta || dim != 2) continue;    // coefficients not allocated yet
@@ -169,7 +169,7 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                style);
   // the inertia factor of the salt's discs as far as the integrators are defined yet (init()
   // reads it again): the Reynolds number is also wanted between runs
-  if (inertia_given == 0.0) inertia = salt_inertia(salts);
+  if (inertia_given == 0.0) inertia = salt_inertia(salts, true);
 
   t0 = model_time();
   vector_flag = 1;
@@ -185,30 +185,19 @@ FixSaltdemViscosity::FixSaltdemViscosity(LAMMPS *lmp, int narg, char **arg) :
                    style, lambda, eta_model, eta_natural, unit_label("Pa s"), npairs);
 }
 
-/* every saltdem/viscous style: the pair style or the sub-styles of pair hybrid (pair_match
-   returns the n-th of them, and the only one again past the last) */
+/* S: the inertia factor of the fix saltdem/nve integrating the salt's discs, as the salt's
+   pair styles report it; the largest of several.  now: collective */
 
-std::vector<Pair *> FixSaltdemViscosity::viscous_pairs()
-{
-  std::vector<Pair *> salts;
-  for (int n = 1; n <= 64; n++) {
-    Pair *p = force->pair_match("saltdem/viscous", 0, n);
-    if (!p || std::find(salts.begin(), salts.end(), p) != salts.end()) break;
-    salts.push_back(p);
-  }
-  return salts;
-}
-
-/* S: what the salt's pair styles report through extract("inertia") (the inertia factor of
-   the fix saltdem/nve integrating the salt's discs); the largest of several.  Collective. */
-
-double FixSaltdemViscosity::salt_inertia(const std::vector<Pair *> &salts)
+double FixSaltdemViscosity::salt_inertia(const std::vector<PairSaltdem *> &salts, bool now)
 {
   double s = 1.0;
-  for (Pair *pair : salts) {
+  for (PairSaltdem *pair : salts) {
+    auto salt = dynamic_cast<PairSaltdemViscous *>(pair);
     int dim = 0;
-    auto v = (double *) pair->extract("inertia", dim);
-    if (v) s = MAX(s, *v);
+    if (now && salt)
+      s = MAX(s, salt->find_salt_inertia());
+    else if (auto v = (double *) pair->extract("inertia", dim))
+      s = MAX(s, *v);
   }
   return s;
 }
@@ -245,13 +234,13 @@ int FixSaltdemViscosity::setmask()
 
 void FixSaltdemViscosity::init()
 {
-  const auto salts = viscous_pairs();
+  const auto salts = PairSaltdem::saltdem_styles(lmp, "saltdem/viscous");
   if (salts.empty())
     error->all(FLERR,
                "Fix {} {} needs pair style saltdem/viscous (alone or in pair_style "
                "hybrid); the pair style was changed since the fix was defined",
                style, id);
-  const double s = salt_inertia(salts);
+  const double s = salt_inertia(salts, false);
   if (inertia_given > 0.0 && fabs(inertia_given - s) > 1e-12 * s)
     error->all(FLERR,
                "Fix {} {}: inertia {} differs from the inertia factor {} of the salt's "

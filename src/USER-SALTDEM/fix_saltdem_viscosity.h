@@ -53,8 +53,9 @@ class FixSaltdemViscosity : public Fix {
   int npairs;              // type pairs whose viscosity the fix set
   double reported;         // the S of the summary in the log (0: none yet)
 
-  std::vector<class Pair *> viscous_pairs();
-  double salt_inertia(const std::vector<class Pair *> &);
+  // S as the salt's pair styles have it (the largest of several): found now (collective; before
+  // a run's init) or as of the run's init (extract "inertia")
+  double salt_inertia(const std::vector<class PairSaltdem *> &, bool now);
   void check_finite();
   double model_time() const;
   std::string unit_label(const char *si) const;

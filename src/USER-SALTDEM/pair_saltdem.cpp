@@ -33,6 +33,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -143,12 +144,11 @@ void PairSaltdem::init_style()
   // number (rolling switched) drops the history instead of misreading it
   if (history && !fix_history) {
     std::string fid = fmt::format("{}{}", hist_id, instance_me);
-    if (force->pair != this)
-      for (int n = 1; n <= 64; n++)
-        if (force->pair_match(name, 0, n) == this) {
-          fid = fmt::format("{}_SUB{}", hist_id, n);
-          break;
-        }
+    if (force->pair != this) {
+      const auto subs = saltdem_styles(lmp, name);
+      const auto at = std::find(subs.begin(), subs.end(), this);
+      if (at != subs.end()) fid = fmt::format("{}_SUB{}", hist_id, 1 + (at - subs.begin()));
+    }
     fid += fmt::format("_N{}", size_history);
     auto cmd = fmt::format("{} all NEIGH_HISTORY {}", fid, size_history);
     fix_history = dynamic_cast<FixNeighHistory *>(
@@ -231,14 +231,14 @@ double PairSaltdem::stable_limit(std::string &why, bool cached)
   return why.empty() ? 0.0 : best;
 }
 
-/* every SaltDEM pair style present: pair_match() returns the n-th matching sub-style of a
-   hybrid, the only one again past the last (or nullptr past the last of several) */
+/* pair_match() returns the n-th matching sub-style of a hybrid, the only one again past the
+   last (or nullptr past the last of several), and a matching pair style for every n */
 
-std::vector<PairSaltdem *> PairSaltdem::saltdem_styles(LAMMPS *lmp)
+std::vector<PairSaltdem *> PairSaltdem::saltdem_styles(LAMMPS *lmp, const std::string &style)
 {
   std::vector<PairSaltdem *> styles;
   for (int n = 1;; n++) {
-    auto pair = dynamic_cast<PairSaltdem *>(lmp->force->pair_match("saltdem/", 0, n));
+    auto pair = dynamic_cast<PairSaltdem *>(lmp->force->pair_match(style, 0, n));
     if (!pair || (!styles.empty() && pair == styles.back())) break;
     styles.push_back(pair);
   }
@@ -474,15 +474,17 @@ void PairSaltdem::read_restart_settings(FILE *fp)
   int version = 0;
   if (me == 0) utils::sfread(FLERR, &version, sizeof(int), 1, fp, nullptr, error);
   MPI_Bcast(&version, 1, MPI_INT, 0, world);
-  if (version < oldest_restart_version() || version > restart_version())
+  const auto reads = restart_versions_read();
+  if (std::find(reads.begin(), reads.end(), version) == reads.end()) {
+    std::string list = fmt::format("layout{} {}", reads.size() > 1 ? "s" : "", reads[0]);
+    for (size_t k = 1; k < reads.size(); k++)
+      list += fmt::format("{}{}", k + 1 < reads.size() ? ", " : " and ", reads[k]);
     error->all(FLERR,
                "Pair style {}: the restart file holds its coefficients in layout version {}, this "
                "version of the style reads {}. Continue the run with the SaltDEM version that "
                "wrote it, or start again from a data file (write_data) with this one",
-               name, version,
-               oldest_restart_version() == restart_version()
-                   ? fmt::format("layout {}", restart_version())
-                   : fmt::format("layouts {} to {}", oldest_restart_version(), restart_version()));
+               name, version, list);
+  }
   layout_read = version;
   const auto settings = setting_names();
   read_names(fp, settings, "settings");

@@ -19,9 +19,10 @@
    pair coefficients of one parameter struct, the size-based neighbour
    list (with shear history where the law has one), cutoffs from the
    largest radius per type, restart of the coefficients, the stable time
-   step check, and the one pair loop.  A derived style supplies the law as
-   a member template `law()` and its parameter struct; the loop and the laws
-   are defined in saltdem_pair_loop.h, which only the .cpp files include.
+   step check, and the one pair loop.  A derived style supplies its
+   parameter struct and its law as a policy the loop is handed (its law
+   header); the loop is defined in saltdem_pair_loop.h, which, as the law
+   headers, only the .cpp files include.
    The OpenMP variants (pair_saltdem_omp.h and the *_omp styles, built with
    the OPENMP package only) run the same loop per thread.
 ------------------------------------------------------------------------- */
@@ -67,6 +68,13 @@ class PairSaltdem : public Pair {
   // makes them: for saltdem/timestep, which needs the stable limit before a run's init
   void init_coeffs();
 
+  // the SaltDEM pair styles present whose style name matches `style` (a pattern, as
+  // Force::pair_match: "saltdem/" for all, "saltdem/viscous" for the salt's, /omp included):
+  // the pair style, or those sub-styles of pair hybrid in their order.  The one walk over the
+  // sub-styles: every style and fix that looks for SaltDEM styles uses it
+  static std::vector<PairSaltdem *> saltdem_styles(class LAMMPS *lmp,
+                                                   const std::string &style = "saltdem/");
+
   // the stable limit of every SaltDEM pair style present (the pair style, or the SaltDEM
   // sub-styles of pair hybrid, in their order), and the smallest of them (pair nullptr: nothing
   // limits the time step).  A limit that is not a finite positive number stops the run with an
@@ -77,7 +85,6 @@ class PairSaltdem : public Pair {
     double dt;
     std::string why;
   };
-  static std::vector<PairSaltdem *> saltdem_styles(class LAMMPS *lmp);
   static Limit smallest_limit(class LAMMPS *lmp, const std::string &who,
                               std::vector<Limit> *each = nullptr, bool cached = false);
 
@@ -91,30 +98,31 @@ class PairSaltdem : public Pair {
     const double *radius, *rmass;
   };
 
-  // the pair loop over [ifrom, ito) of the neighbour list, written once for
-  // the serial and the threaded styles.  The derived style's inline law
-  //   template <int DIM, int EVFLAG> int law(const Atoms &, int i, int j, int itype,
+  // the pair loop over [ifrom, ito) of the neighbour list, written once for the serial and
+  // the threaded styles, with the law a policy it is handed (each style's law header, e.g.
+  // saltdem_cohesive_law.h): a struct with
+  //   static constexpr bool HISTORY, PAIR_SUM;
+  //   template <int DIM, int EVFLAG> int force(const Atoms &, int i, int j, int itype,
   //     int jtype, double r, double *hist, bool advance, double *f, double *ti,
-  //     double *tj, double &evdwl, double *q)
-  // computes the kinematics it needs, fills the force on i (and torques on i
-  // and j if it returns LAW_TORQUE) and returns LAW_* flags (Derived::HISTORY:
-  // whether hist is used, a compile-time constant).  A law with a
-  // per-atom pair sum (Derived::PAIR_SUM, e.g. the continuity density of the
-  // fluid) sets i's and j's terms of it, q[0] and q[1]: sum[i] += q[0],
+  //     double *tj, double &evdwl, double *q) const
+  // inlined into the loop.  force() computes the kinematics it needs, fills the force on i
+  // (and torques on i and j if it returns LAW_TORQUE) and returns LAW_* flags (HISTORY:
+  // whether hist is used).  A law with a per-atom pair sum (PAIR_SUM, e.g. the continuity
+  // density of the fluid) sets i's and j's terms of it, q[0] and q[1]: sum[i] += q[0],
   // sum[j] += q[1] (sum: loop_sum(), so the sum costs no second pass).  tally() receives
-  // (i, j, evdwl, fx, fy, fz, delx, dely, delz).  DIM 2: discs in the xy
-  // plane (z parts are zero and are not touched, see saltdem_contact.h).
-  template <class Derived, int EVFLAG, int DIM, class Tally>
-  void loop(Derived *self, int ifrom, int ito, double **f, double **torque, double *sum,
+  // (i, j, evdwl, fx, fy, fz, delx, dely, delz).  DIM 2: discs in the xy plane (z parts are
+  // zero and are not touched, see saltdem_contact.h).
+  template <class Law, int EVFLAG, int DIM, class Tally>
+  void loop(const Law &law, int ifrom, int ito, double **f, double **torque, double *sum,
             Tally &&tally);
 
   // loop() for the run's energy/virial flag and dimension
-  template <class Derived, class Tally>
-  void dispatch_loop(Derived *self, int ifrom, int ito, double **f, double **torque, double *sum,
+  template <class Law, class Tally>
+  void dispatch_loop(const Law &law, int ifrom, int ito, double **f, double **torque, double *sum,
                      Tally &&tally);
 
-  // the serial compute() of a derived style: pre_loop(), the loop over all pairs
-  template <class Derived> void compute_serial(Derived *self, int eflag, int vflag);
+  // the serial compute() of a style: pre_loop(), the loop over all pairs
+  template <class Law> void compute_serial(const Law &law, int eflag, int vflag);
 
   // (the three templates are defined in saltdem_pair_loop.h, which only the .cpp files of
   // the styles include)
@@ -197,9 +205,10 @@ class PairSaltdem : public Pair {
   // stops read_restart with a message naming both.
   static constexpr double RESTART_MARK = -20261214.0;    // SaltDEM::RESTART_MARK (saltdem_check.h)
   virtual int restart_version() const = 0;
-  // the oldest layout a style still reads (its setting_names() and unpack_settings() then
-  // follow layout_read, the version of the file being read; 0 outside read_restart)
-  virtual int oldest_restart_version() const { return restart_version(); }
+  // the layouts a style reads, in order: its own and older ones that a released version wrote
+  // (its setting_names() and unpack_settings() then follow layout_read, the version of the
+  // file being read; 0 outside read_restart)
+  virtual std::vector<int> restart_versions_read() const { return {restart_version()}; }
   int layout_read;
   virtual std::vector<std::string> setting_names() const = 0;
   virtual void pack_settings(double *) const = 0;    // in the order of setting_names()

@@ -16,14 +16,15 @@
    repository: discrete-element salt tectonics)
 
    pair saltdem/cohesive: the frictional-cohesive cover.  The law itself is
-   SaltDEM::cohesive_force (saltdem_contact.h); this file parses and checks
+   SaltDEM::cohesive_force (saltdem_contact_cohesive.h); this file parses and checks
    its coefficients, mixes cross types and sets the stable time step.
 ------------------------------------------------------------------------- */
 
 #include "pair_saltdem_cohesive.h"
 
 #include "saltdem_check.h"
-#include "saltdem_contact.h"
+#include "saltdem_cohesive_law.h"
+#include "saltdem_contact_cohesive.h"
 #include "saltdem_pair_loop.h"
 
 #include "atom.h"
@@ -64,7 +65,12 @@ void PairSaltdemCohesive::allocate_params(int n)
 
 void PairSaltdemCohesive::compute(int eflag, int vflag)
 {
-  compute_serial(this, eflag, vflag);
+  compute_serial(law(), eflag, vflag);
+}
+
+SaltDEM::CohesiveLaw PairSaltdemCohesive::law() const
+{
+  return {params, rolling, dt};
 }
 
 void *PairSaltdemCohesive::pair_params(int i, int j)
@@ -225,7 +231,8 @@ void PairSaltdemCohesive::init_style()
   delete[] transfer_factor;
   transfer_factor = new double[size_history];
   // seen from j the tangential displacement flips sign and the rolling displacement does not;
-  // in 2D both are kept as lengths along the tangent (-n1, n0), which flips too (saltdem_contact.h)
+  // in 2D both are kept as lengths along the tangent (-n1, n0), which flips too
+  // (saltdem_contact_cohesive.h)
   const bool dim2 = (domain->dimension == 2);
   for (int k = 0; k < size_history; k++) transfer_factor[k] = ((k < 3) != dim2) ? -1.0 : 1.0;
   nondefault_history_transfer = 1;

@@ -30,7 +30,8 @@ PairStyle(saltdem/cohesive,PairSaltdemCohesive);
 namespace LAMMPS_NS {
 namespace SaltDEM {
   struct CohesiveParams;
-}
+  struct CohesiveLaw;
+}    // namespace SaltDEM
 
 class PairSaltdemCohesive : public PairSaltdem {
  public:
@@ -42,18 +43,13 @@ class PairSaltdemCohesive : public PairSaltdem {
   void init_style() override;
   void *extract(const char *, int &) override;
 
-  // the force law, inlined into the shared pair loop (PairSaltdem::loop; defined in
-  // saltdem_pair_loop.h); no per-atom sum
-  static constexpr bool HISTORY = true;    // the law keeps values per touching pair
-  static constexpr bool PAIR_SUM = false;
-  template <int DIM, int EVFLAG>
-  int law(const Atoms &a, int i, int j, int itype, int jtype, double r, double *hist, bool advance,
-          double *f, double *ti, double *tj, double &evdwl, double *) const;
-
  protected:
-  SaltDEM::CohesiveParams **params;    // per type pair coefficients (saltdem_contact.h)
+  SaltDEM::CohesiveParams **params;    // per type pair coefficients (saltdem_contact_cohesive.h)
   bool rolling;                        // any pair with rolling resistance: 3 more history values
   double dt;
+
+  // the law policy of the shared pair loop (saltdem_cohesive_law.h)
+  SaltDEM::CohesiveLaw law() const;
 
   void allocate_params(int) override;
   void *pair_params(int i, int j) override;

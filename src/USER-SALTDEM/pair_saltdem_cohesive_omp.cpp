@@ -24,6 +24,7 @@
 
 #include "pair_saltdem_cohesive_omp.h"
 
+#include "saltdem_cohesive_law.h"
 #include "saltdem_pair_loop.h"
 
 #include "atom.h"
@@ -59,9 +60,10 @@ void PairSaltdemCohesiveOMP::compute(int eflag, int vflag)
   const int nthreads = comm->nthreads;
   const int *bounds =
       thread_bounds(list->ilist, list->numneigh, list->inum, neighbor->lastcall, nthreads);
+  const SaltDEM::CohesiveLaw cover = law();
 
 #if defined(_OPENMP)
-#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag, bounds, nthreads)
+#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag, bounds, nthreads, cover)
 #endif
   {
 #if defined(_OPENMP)
@@ -79,7 +81,7 @@ void PairSaltdemCohesiveOMP::compute(int eflag, int vflag)
                      double dz) {
       ev_tally_xyz_thr(this, i, j, nlocal, newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz, thr);
     };
-    dispatch_loop(this, bounds[tid], bounds[tid + 1], thr->get_f(), thr->get_torque(), nullptr,
+    dispatch_loop(cover, bounds[tid], bounds[tid + 1], thr->get_f(), thr->get_torque(), nullptr,
                   tally);
 
     thr->timer(Timer::PAIR);

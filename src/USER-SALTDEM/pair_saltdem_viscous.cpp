@@ -18,16 +18,21 @@
    pair saltdem/viscous: the linear Newtonian salt, and the no-slip
    boundary contact of cover-salt, salt-wall and cover-wall pairs.  The laws
    are SaltDEM::viscous_fluid_force and viscous_contact_force
-   (saltdem_contact.h); this file turns the requested viscosity into dashpot
-   coefficients, carries the fluid's density and sets the stable dt.
+   (saltdem_contact_viscous.h), its law policy SaltDEM::ViscousLaw (saltdem_viscous_law.h);
+   this file turns the requested viscosity into dashpot coefficients, sets the stable dt,
+   keeps the restart data, and runs the SPH field passes (SaltDEM::SphFields) and the viscous
+   sub-steps (SaltdemViscousSubsteps) it owns.
 ------------------------------------------------------------------------- */
 
 #include "pair_saltdem_viscous.h"
 
 #include "fix_saltdem_density.h"
 #include "saltdem_check.h"
-#include "saltdem_contact.h"
+#include "saltdem_contact_viscous.h"
 #include "saltdem_pair_loop.h"
+#include "saltdem_sph_fields.h"
+#include "saltdem_viscous_law.h"
+#include "saltdem_viscous_substeps.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -47,22 +52,18 @@
 
 using namespace LAMMPS_NS;
 
-// what the pair's forward and reverse communication carries
-enum { COMM_PRESSURE, COMM_SUBSTEP };
-
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
-    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr), vol(nullptr),
-    pmat(nullptr), moment(nullptr), fill(nullptr), mdens(nullptr), scratch(nullptr),
+    PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr),
+    fields(new SaltDEM::SphFields), substep(new SaltdemViscousSubsteps(lmp, this)),
     fix_density(nullptr), fluidself(nullptr), isfluid(nullptr), nmax(0), any_fluid(false),
     calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION), viscfactor(0.8),
-    fill_max(DEFAULT_FILL_MAX), substeps(1), noslip_surface(false), slip(nullptr), usub(nullptr),
-    fsub(nullptr), ksub(nullptr), fother(nullptr), comm_mode(COMM_PRESSURE),
+    fill_max(DEFAULT_FILL_MAX), substeps(1), noslip_surface(false), comm_mode(COMM_PRESSURE),
     calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
   // volume, boundary fill, pressure matrix and no-slip offset, or the sub-step velocities; the
   // kernel sums of ghosts (newton on), or their sub-step forces
   comm_forward = 2 + SaltDEM::NSYM + 3;
-  comm_reverse = NMOM_MAX;
+  comm_reverse = SaltDEM::SPH_NMOM_MAX;
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -70,17 +71,8 @@ PairSaltdemViscous::~PairSaltdemViscous()
   if (copymode) return;
   memory->destroy(params);
   memory->destroy(eta);
-  memory->destroy(vol);
-  memory->destroy(pmat);
-  memory->destroy(moment);
-  memory->destroy(fill);
-  memory->destroy(mdens);
-  memory->destroy(scratch);
-  memory->destroy(slip);
-  memory->destroy(usub);
-  memory->destroy(fsub);
-  memory->destroy(ksub);
-  memory->destroy(fother);
+  delete fields;
+  delete substep;
   memory->destroy(isfluid);
   memory->destroy(fluidself);
   // the salt's density is this pair style's state: it goes with it
@@ -98,16 +90,17 @@ void PairSaltdemViscous::allocate_params(int n)
 
 void PairSaltdemViscous::compute(int eflag, int vflag)
 {
-  compute_serial(this, eflag, vflag);
+  compute_serial(law(), eflag, vflag);
+}
+
+SaltDEM::ViscousLaw PairSaltdemViscous::law() const
+{
+  return {params, isfluid, fields};
 }
 
 void PairSaltdemViscous::apply_substeps()
 {
-  if (substeps < 2 || !any_fluid) return;
-  if (domain->dimension == 2)
-    viscous_substeps<2>();
-  else
-    viscous_substeps<3>();
+  if (substeps > 1 && any_fluid) substep->apply(substeps);
 }
 
 void *PairSaltdemViscous::pair_params(int i, int j)
@@ -332,8 +325,17 @@ void PairSaltdemViscous::init_style()
                  name, density_id, f->style);
     fix_density->pair = this;
   }
+  fields->params = params;
+  fields->fluidself = fluidself;
+  fields->isfluid = isfluid;
+  fields->ntypes = atom->ntypes;
+  fields->fill_max = fill_max;
+  fields->noslip = noslip_surface;
+  fields->keep_pairs = substeps > 1;
   // the sub-steps move the atoms that a fix integrates, with the inertia it gives them
   integrators = find_integrators();
+  // (here, where every rank takes part: extract() may be called by one rank alone)
+  salt_inertia = find_salt_inertia();
   if (any_fluid && noslip_surface && comm->me == 0)
     utils::logmesg(lmp,
                    "Pair style {}: no-slip at the surfaces of the boundary discs (noslip "
@@ -346,414 +348,85 @@ void PairSaltdemViscous::init_style()
   PairSaltdem::init_style();
 }
 
-/* the kernel density out[i] = sum_j mu_ij W_ij (j = i included) of every owned atom of a type
-   whose own pair is FLUID, over the FLUID pairs of the list, owned and ghost atoms, and
-   whether its kernel is full (interior[i] = 1: its neighbours surround it, see
-   SaltDEM::INTERIOR_MAX; 0 otherwise): for the reference density (FixSaltdemDensity).  The
-   sums use the moment array (the density in the slot WF, the first moment in the slots of
-   the fluid moment, its norm in WB; Layout) */
+/* the kernel density of the owned atoms (SaltDEM::SphFields::kernel_density): for the
+   reference density (FixSaltdemDensity) */
 
 void PairSaltdemViscous::kernel_density(double *out, double *interior)
 {
   grow_arrays();
   material_density();
-  if (domain->dimension == 2)
-    kernel_density<2>(out, interior);
-  else
-    kernel_density<3>(out, interior);
+  fields->kernel_density(
+      domain->dimension, sph_input(),
+      [this] {
+        reverse_kernel_sums();
+      },
+      out, interior);
 }
 
-template <int DIM> void PairSaltdemViscous::kernel_density(double *out, double *interior)
+/* the atoms (owned, then ghosts) and the neighbour list of the field passes */
+
+SaltDEM::SphInput PairSaltdemViscous::sph_input() const
 {
-  const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
-  const double *m = atom->rmass;
-  const double *radius = atom->radius;
-  const int *type = atom->type;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  const int newton_pair = force->newton_pair;
-  using L = Layout<DIM>;
-  std::fill_n(moment, L::NMOM * nall, 0.0);
-  for (int i = 0; i < nlocal; i++) {
-    const int t = type[i];
-    if (fluidself[t])
-      moment[L::NMOM * i + L::WF] = m[i] * SaltDEM::wendland_c2(DIM, params[t][t].h, 0.0);
-  }
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    const int *jlist = list->firstneigh[i];
-    const SaltDEM::ViscousParams *prow = params[type[i]];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const SaltDEM::ViscousParams &p = prow[type[j]];
-      if (p.mode != SaltDEM::VISCOUS_FLUID) continue;
-      double d[3] = {0.0, 0.0, 0.0}, rsq = 0.0;
-      for (int k = 0; k < DIM; k++) {
-        d[k] = x[i][k] - x[j][k];
-        rsq += d[k] * d[k];
-      }
-      const double r = sqrt(rsq);
-      const double w = SaltDEM::wendland_c2(DIM, p.h, r);
-      const double s = (r < 2.0 * p.h) ? 1.0 - 0.5 * r / p.h : 0.0;
-      const double g = s * s * s;    // |W'|/r up to a constant
-      const double mij = partner_mass<DIM>(radius, i, j), mji = partner_mass<DIM>(radius, j, i);
-      double *Mi = &moment[L::NMOM * i];
-      Mi[L::WF] += mij * w;
-      Mi[L::WB] += mij * g * r;
-      for (int k = 0; k < DIM; k++) Mi[k] += mij * g * d[k];
-      if (newton_pair || j < nlocal) {
-        double *Mj = &moment[L::NMOM * j];
-        Mj[L::WF] += mji * w;
-        Mj[L::WB] += mji * g * r;
-        for (int k = 0; k < DIM; k++) Mj[k] -= mji * g * d[k];
-      }
-    }
-  }
-  comm_mode = COMM_PRESSURE;
-  if (newton_pair) comm->reverse_comm(this);
-  for (int i = 0; i < nlocal; i++) {
-    const double *Mi = &moment[L::NMOM * i];
-    const int t = type[i];
-    out[i] = fluidself[t] ? Mi[L::WF] : 0.0;
-    double g2 = 0.0;
-    for (int k = 0; k < DIM; k++) g2 += Mi[k] * Mi[k];
-    interior[i] = (fluidself[t] && Mi[L::WB] > 0.0 && sqrt(g2) < SaltDEM::INTERIOR_MAX * Mi[L::WB])
-        ? 1.0
-        : 0.0;
-  }
+  using row = const double(*)[3];
+  SaltDEM::SphInput in;
+  in.x = atom->x ? (row) atom->x[0] : nullptr;    // (none on an empty rank)
+  in.v = atom->v ? (row) atom->v[0] : nullptr;
+  in.rmass = atom->rmass;
+  in.radius = atom->radius;
+  in.type = atom->type;
+  in.nlocal = atom->nlocal;
+  in.nall = atom->nlocal + atom->nghost;
+  in.newton = force->newton_pair != 0;
+  in.inum = list->inum;
+  in.ilist = list->ilist;
+  in.numneigh = list->numneigh;
+  in.firstneigh = list->firstneigh;
+  in.neighmask = NEIGHMASK;
+  return in;
 }
 
-/* FLUID volume and pressure.  The density of a fluid particle is the state of the internal
-   fix FixSaltdemDensity (it migrates and restarts with the atom) and follows the continuity
-   equation
-     d rho_i / dt = sum_j m_j (v_i - v_j) . grad_i W_ij
-   over the FLUID pairs (walls and cover included: moving boundaries compress the fluid),
-   summed in the force pass into the fix's d rho / dt and integrated by the fix after it, as
-   LAMMPS's SPH styles do: the pressure of a step is that of the density at the end of the
-   step before.  It starts at the reference rho0 of its type, the mean kernel density
-   sum_j m_j W_ij of the particles of that type whose kernel is full (away from free surfaces
-   and boundaries) at the setup of the first run (the fix measures it), so the fluid starts
-   free of pressure.  A summed kernel density would instead drift upwards as particles pair up
-   (the mean of sum_j W grows while the volume does not).  Here, before the force pass: the
-   kernel sums of the present positions (kernel_moments), each fluid particle's boundary fill
-   (SaltDEM::boundary_fill), its volume m / rho and its pressure matrix A = m P / rho^2 L with
-   the equation of state and the kernel-gradient correction L, whose moment counts the
-   boundary partners with the fill (SaltDEM::particle_volume, pressure_term, pressure_matrix),
-   sent to the ghosts. */
+void PairSaltdemViscous::reverse_kernel_sums()
+{
+  comm_mode = COMM_PRESSURE;
+  comm->reverse_comm(this);
+}
+
+/* FLUID: before the force pass, the kernel sums of the present positions, each fluid
+   particle's boundary fill, volume and pressure matrix (SaltDEM::SphFields), sent to the
+   ghosts.  The density is the density fix's (see SphFields::pressure_matrices). */
 
 void PairSaltdemViscous::pre_loop()
 {
   grow_arrays();
   if (!any_fluid) return;
   material_density();
-  if (domain->dimension == 2)
-    pressure_matrices<2>();
-  else
-    pressure_matrices<3>();
+  fields->pressure_matrices(domain->dimension, sph_input(), fix_density->rho,
+                            fix_density->rho0.data(), [this] {
+                              reverse_kernel_sums();
+                            });
   comm_mode = COMM_PRESSURE;
   comm->forward_comm(this);
 }
 
-template <int DIM> void PairSaltdemViscous::pressure_matrices()
-{
-  using L = Layout<DIM>;
-  const int nlocal = atom->nlocal;
-  const double *m = atom->rmass;
-  const int *type = atom->type;
-  const double *rho = fix_density->rho;
-  const double *rho0 = fix_density->rho0.data();
-  const int nt = atom->ntypes;
-
-  kernel_moments<DIM>();
-  if (noslip_surface) noslip_offsets<DIM>();
-
-  // a boundary particle (wall, cover) has, beside a fluid particle, the volume of the fluid it
-  // stands for (pair_weights: its mass as that fluid's over the fluid's reference density);
-  // between boundary particles, its own at the densest fluid's reference density.  A fluid
-  // particle created during the run starts at its reference density
-  double rhob = 0.0;
-  irho0.assign(nt + 1, 0.0);
-  for (int t = 1; t <= nt; t++)
-    if (fluidself[t] && rho0[t] > 0.0) {
-      rhob = MAX(rhob, rho0[t]);
-      irho0[t] = 1.0 / rho0[t];
-    }
-  for (int i = 0; i < nlocal; i++) {
-    const int t = type[i];
-    const double r = fluidself[t] ? (rho[i] > 0.0 ? rho[i] : rho0[t]) : rhob;
-    vol[i] = SaltDEM::particle_volume(m[i], r);
-    const double *M = &moment[L::NMOM * i];
-    fill[i] = fluidself[t] ? SaltDEM::boundary_fill(M[L::WF], M[L::WB], r, rho0[t], fill_max) : 1.0;
-    double *A = &pmat[L::NS * i];
-    if (isfluid[t]) {
-      const double a = SaltDEM::pressure_term(m[i], params[t][t].K, r, rho0[t]);
-      for (int k = 0; k < L::NS; k++) A[k] = M[k] + fill[i] * M[L::NS + k];
-      SaltDEM::pressure_matrix<DIM>(a, r, A);
-    } else
-      for (int k = 0; k < L::NS; k++) A[k] = 0.0;
-  }
-}
-
-/* the kernel sums of the owned particles of the types whose own pair is FLUID, over the FLUID
-   pairs of the list, split into their fluid and their boundary partners (a partner whose own
-   pair is not FLUID): the moments S = sum_j m_j w_ij d_ij d_ij and the kernel sums
-   sum_j m_j W_ij (i itself among the fluid's); with noslip surface, in the same slots of a
-   boundary particle b (whose own sums are not needed), its fluid partners' kernel sums
-   sum_f m_f W_bf in WF, sum_f m_f W_bf (x_f - x_b) in slots 0.. and sum_f m_f W_bf v_f in
-   slots NS.. (Layout; noslip_offsets); with newton on the ghosts' parts go home; with viscous
-   sub-steps also the list of the FLUID pairs within 2h and their kernel factors */
-
-template <int DIM> void PairSaltdemViscous::kernel_moments()
-{
-  using L = Layout<DIM>;
-  constexpr int NS = L::NS;
-  const auto x = atom->x ? (const double(*)[3]) atom->x[0] : nullptr;    // (none on an empty rank)
-  const auto v = atom->v ? (const double(*)[3]) atom->v[0] : nullptr;
-  const double *m = atom->rmass;
-  const double *radius = atom->radius;
-  const int *type = atom->type;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  const int newton_pair = force->newton_pair;
-  // (a loop over the member pointer would store one double at a time)
-  std::fill_n(moment, L::NMOM * (newton_pair ? nall : nlocal), 0.0);
-  const bool sub = substeps > 1;
-  const bool ext = noslip_surface;
-  // a boundary particle b's sums of a fluid partner f at d = x_f - x_b (sign: +1) or x_b - x_f
-  auto add_fluid = [&](double *Mb, int f, double mw, const double *d, double sign) {
-    Mb[L::WF] += mw;
-    for (int k = 0; k < DIM; k++) {
-      Mb[k] += sign * mw * d[k];
-      Mb[NS + k] += mw * v[f][k];
-    }
-  };
-  subpairs.clear();
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    const int itype = type[i];
-    const bool fi = fluidself[itype];
-    const double xi0 = x[i][0], xi1 = x[i][1], xi2 = (DIM == 3) ? x[i][2] : 0.0;
-    const int *jlist = list->firstneigh[i];
-    const SaltDEM::ViscousParams *prow = params[itype];
-    double Mi[L::NMOM] = {};    // i's sums, stored once
-    if (fi) Mi[L::WF] = m[i] * SaltDEM::wendland_c2(DIM, prow[itype].h, 0.0);
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = jlist[jj] & NEIGHMASK;
-      const int jtype = type[j];
-      const SaltDEM::ViscousParams &p = prow[jtype];
-      const bool fj = fluidself[jtype];
-      if (p.mode != SaltDEM::VISCOUS_FLUID || !(fi || fj || sub)) continue;
-      const double d[3] = {xi0 - x[j][0], xi1 - x[j][1], (DIM == 3) ? xi2 - x[j][2] : 0.0};
-      const double rsq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-      if (rsq * p.ih2 * p.ih2 >= 1.0 || rsq == 0.0) continue;    // beyond 2h (the list has a skin)
-      const double r = sqrt(rsq);
-      const double s = 1.0 - r * p.ih2;
-      if (sub) subpairs.push_back({i, j, p.kvisc * s * s * s});
-      const double w = p.cw * s * s * s;
-      const double W = SaltDEM::wendland_c2_s(p.cW, s);
-      // i's partner j goes into i's fluid or boundary sums, and i into j's
-      if (fi) {
-        const double mij = partner_mass<DIM>(radius, i, j);
-        SaltDEM::add_moment<DIM>(mij * w, d, fj ? Mi : Mi + NS);
-        Mi[fj ? L::WF : L::WB] += mij * W;
-      }
-      if (fj && (newton_pair || j < nlocal)) {
-        const double mji = partner_mass<DIM>(radius, j, i);
-        double *Mj = &moment[L::NMOM * j];
-        SaltDEM::add_moment<DIM>(mji * w, d, fi ? Mj : Mj + NS);
-        Mj[fi ? L::WF : L::WB] += mji * W;
-      }
-      if (ext && fi != fj) {
-        if (fj)
-          add_fluid(Mi, j, m[j] * W, d, -1.0);
-        else if (newton_pair || j < nlocal)
-          add_fluid(&moment[L::NMOM * j], i, m[i] * W, d, 1.0);
-      }
-    }
-    if (fi || ext)
-      for (int k = 0; k < L::NMOM; k++) moment[L::NMOM * i + k] += Mi[k];
-  }
-  if (newton_pair) {
-    comm_mode = COMM_PRESSURE;
-    comm->reverse_comm(this);
-  }
-}
-
-/* noslip surface: the offset v_eff - v of each owned boundary particle from its fluid
-   partners' sums (kernel_moments; SaltDEM::noslip_offset), 0 for the fluid's own particles
-   and for boundary particles without a fluid partner */
-
-template <int DIM> void PairSaltdemViscous::noslip_offsets()
-{
-  using L = Layout<DIM>;
-  const double *const *v = atom->v;
-  const double *radius = atom->radius;
-  const int *type = atom->type;
-  for (int i = 0; i < atom->nlocal; i++) {
-    double *o = &slip[3 * i];
-    const double *M = &moment[L::NMOM * i];
-    if (fluidself[type[i]])
-      o[0] = o[1] = o[2] = 0.0;
-    else
-      SaltDEM::noslip_offset<DIM>(M[L::WF], M, M + L::NS, v[i], radius[i], o);
-  }
-}
-
-/* the Morris viscosity of the stored pairs as substeps explicit steps of dt/substeps on copies
-   of the velocities (positions, volumes and coefficients as in the force pass, the other
-   forces of the step held constant), each pair's force -g_ij (u_i - u_j) at every sub-step;
-   the mean force over the sub-steps is added to f, so that the integrator's step gives each
-   particle the velocity change of the sub-steps.  Atoms that no fix integrates or whose motion
-   is prescribed (walls) keep their velocity.  Called by the density fix once all forces of
-   the step are in (post_force). */
-
-template <int DIM> void PairSaltdemViscous::viscous_substeps()
-{
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  const int newton_pair = force->newton_pair;
-  const double *const *v = atom->v;
-  const double *const *x = atom->x;
-  double **f = atom->f;
-  const int *mask = atom->mask;
-  const double *m = atom->rmass;
-  const int n = substeps;
-  const double hdt = update->dt * force->ftm2v / n;
-  const double inv_n = 1.0 / n;
-
-  for (int i = 0; i < nall; i++)
-    for (int k = 0; k < 3; k++) usub[3 * i + k] = v[i][k];
-  // the other forces of the step, held constant over the sub-steps, and dt/N over the
-  // inertial mass of the owned atoms (0 for walls)
-  for (int i = 0; i < nlocal; i++) {
-    for (int k = 0; k < 3; k++) fother[3 * i + k] = f[i][k];
-    const double scale = inertia_scale(mask[i], integrators);
-    ksub[i] = (scale > 0.0) ? hdt / (scale * m[i]) : 0.0;
-  }
-
-  // the pair weights g_ij = c V_i V_j (the volumes of the force pass, pair_weights), once
-  const int *type = atom->type;
-  const double *radius = atom->radius;
-  for (auto &sp : subpairs) {
-    const Weights w = pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
-    sp.c *= w.vi * w.vj;
-  }
-  // noslip surface: the boundary partners' offsets (of the step's start) add a force that
-  // the sub-steps hold constant, as the other forces (its ghosts' parts go home once)
-  if (noslip_surface) {
-    for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
-    for (const auto &sp : subpairs) {
-      // -c (v_i - v_j + o_i - o_j) less the plain -c (v_i - v_j)
-      double ov[3] = {0.0, 0.0, 0.0}, fp[3] = {0.0, 0.0, 0.0};
-      if (!noslip_pair<DIM>(sp.i, sp.j, type[sp.i], type[sp.j], ov)) continue;
-      for (int k = 0; k < DIM; k++) {
-        fp[k] = -sp.c * ov[k];
-        fsub[3 * sp.i + k] += fp[k];
-        if (newton_pair || sp.j < nlocal) fsub[3 * sp.j + k] -= fp[k];
-      }
-      if (evflag)
-        ev_tally_xyz(sp.i, sp.j, nlocal, newton_pair, 0.0, 0.0, fp[0], fp[1], fp[2],
-                     x[sp.i][0] - x[sp.j][0], x[sp.i][1] - x[sp.j][1],
-                     (DIM == 3) ? x[sp.i][2] - x[sp.j][2] : 0.0);
-    }
-    comm_mode = COMM_SUBSTEP;
-    if (newton_pair) comm->reverse_comm(this);
-    for (int i = 0; i < nlocal; i++)
-      for (int k = 0; k < DIM; k++) {
-        f[i][k] += fsub[3 * i + k];
-        fother[3 * i + k] += fsub[3 * i + k];
-      }
-  }
-  const SubPair *begin = subpairs.data(), *end = begin + subpairs.size();
-  for (int step = 0; step < n; step++) {
-    for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
-    // the pairs come grouped by i (kernel_moments): i's sum is kept in registers
-    for (const SubPair *sp = begin; sp < end;) {
-      const int i = sp->i;
-      const double ui[3] = {usub[3 * i], usub[3 * i + 1], usub[3 * i + 2]};
-      double fi[3] = {0.0, 0.0, 0.0};
-      for (; sp < end && sp->i == i; ++sp) {
-        const int j = sp->j;
-        double fp[3] = {0.0, 0.0, 0.0};
-        for (int k = 0; k < DIM; k++) {
-          fp[k] = -sp->c * (ui[k] - usub[3 * j + k]);
-          fi[k] += fp[k];
-        }
-        if (newton_pair || j < nlocal)
-          for (int k = 0; k < DIM; k++) fsub[3 * j + k] -= fp[k];
-        if (evflag)
-          ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fp[0] * inv_n, fp[1] * inv_n,
-                       fp[2] * inv_n, x[i][0] - x[j][0], x[i][1] - x[j][1],
-                       (DIM == 3) ? x[i][2] - x[j][2] : 0.0);
-      }
-      for (int k = 0; k < DIM; k++) fsub[3 * i + k] += fi[k];
-    }
-    comm_mode = COMM_SUBSTEP;
-    if (newton_pair) comm->reverse_comm(this);
-    for (int i = 0; i < nlocal; i++)
-      for (int k = 0; k < DIM; k++) {
-        f[i][k] += fsub[3 * i + k] * inv_n;
-        usub[3 * i + k] += ksub[i] * (fsub[3 * i + k] + fother[3 * i + k]);
-      }
-    if (step + 1 < n) comm->forward_comm(this);
-  }
-  comm_mode = COMM_PRESSURE;
-}
-
 void PairSaltdemViscous::grow_arrays()
 {
-  // (sub-steps may be switched on between runs: saltdem/timestep ... substeps N)
-  if (atom->nmax <= nmax && (substeps < 2 || usub) && (!noslip_surface || slip)) return;
-  memory->destroy(vol);
-  memory->destroy(pmat);
-  memory->destroy(moment);
-  memory->destroy(fill);
-  memory->destroy(mdens);
-  memory->destroy(scratch);
-  memory->destroy(slip);
-  memory->destroy(usub);
-  memory->destroy(fsub);
-  memory->destroy(ksub);
-  memory->destroy(fother);
   nmax = MAX(nmax, atom->nmax);
-  memory->create(vol, nmax, "pair:vol");
-  if (noslip_surface) {
-    memory->create(slip, 3 * nmax, "pair:slip");
-    for (int i = 0; i < 3 * nmax; i++) slip[i] = 0.0;
-  }
-  memory->create(fill, nmax, "pair:fill");
-  memory->create(mdens, nmax, "pair:mdens");
-  if (substeps > 1) {
-    memory->create(usub, 3 * nmax, "pair:usub");
-    memory->create(fsub, 3 * nmax, "pair:fsub");
-    memory->create(ksub, nmax, "pair:ksub");
-    memory->create(fother, 3 * nmax, "pair:fother");
-  }
-  memory->create(pmat, SaltDEM::NSYM * nmax, "pair:pmat");
-  memory->create(moment, NMOM_MAX * nmax, "pair:moment");
-  if (!any_fluid) memory->create(scratch, nmax, "pair:scratch");
+  fields->grow(nmax);
+  // (sub-steps may be switched on between runs: saltdem/timestep ... substeps N)
+  if (substeps > 1) substep->grow(nmax);
 }
 
-/* the material density m / r^dim of the owned and ghost atoms, which weighs a partner as
-   the particle's own material (pair_weights); a disc in a FLUID pair needs a radius */
+/* a disc in a FLUID pair needs a radius: the material density m / r^dim weighs it */
 
 void PairSaltdemViscous::material_density()
 {
-  const int nall = atom->nlocal + atom->nghost;
-  const double *radius = atom->radius, *m = atom->rmass;
-  const int *type = atom->type;
-  const int dim = domain->dimension;
-  for (int i = 0; i < nall; i++) {
-    const double r = radius[i];
-    const double a = (dim == 2) ? r * r : r * r * r;
-    if (!(a > 0.0) && influid[type[i]])
-      error->one(FLERR,
-                 "Pair style {}: atom {} of type {} has radius {} in a fluid pair; the fluid law "
-                 "weighs its partners by their size: give every disc a positive diameter (set "
-                 "... diameter)",
-                 name, atom->tag[i], type[i], r);
-    mdens[i] = (a > 0.0) ? m[i] / a : 0.0;
-  }
+  const int bad = fields->material_density(sph_input(), domain->dimension, influid.data());
+  if (bad >= 0)
+    error->one(FLERR,
+               "Pair style {}: atom {} of type {} has radius {} in a fluid pair; the fluid law "
+               "weighs its partners by their size: give every disc a positive diameter (set "
+               "... diameter)",
+               name, atom->tag[bad], atom->type[bad], atom->radius[bad]);
 }
 
 /* the array the force pass sums d rho / dt into (zeroed here): the density fix's; with no
@@ -763,92 +436,40 @@ void PairSaltdemViscous::material_density()
 double *PairSaltdemViscous::loop_sum()
 {
   const int nall = atom->nlocal + atom->nghost;
-  if (!any_fluid && !scratch) memory->create(scratch, nmax, "pair:scratch");
-  double *sum = any_fluid ? fix_density->drho : scratch;
+  if (!any_fluid && (int) scratch.size() < nmax) scratch.resize(nmax);
+  double *sum = any_fluid ? fix_density->drho : scratch.data();
   for (int i = 0; i < nall; i++) sum[i] = 0.0;
   return sum;
 }
 
 int PairSaltdemViscous::pack_forward_comm(int n, int *list, double *buf, int, int *)
 {
-  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
-  int k = 0;
-  if (comm_mode == COMM_SUBSTEP) {
-    for (int i = 0; i < n; i++)
-      for (int c = 0; c < 3; c++) buf[k++] = usub[3 * list[i] + c];
-    return k;
-  }
-  const int nd = noslip_surface ? domain->dimension : 0;
-  for (int i = 0; i < n; i++) {
-    const int j = list[i];
-    buf[k++] = vol[j];
-    buf[k++] = fill[j];
-    for (int c = 0; c < ns; c++) buf[k++] = pmat[ns * j + c];
-    for (int c = 0; c < nd; c++) buf[k++] = slip[3 * j + c];
-  }
-  return k;
+  if (comm_mode == COMM_SUBSTEP) return substep->pack_forward_comm(n, list, buf);
+  return fields->pack_forward_comm(domain->dimension, n, list, buf);
 }
 
 void PairSaltdemViscous::unpack_forward_comm(int n, int first, double *buf)
 {
-  const int ns = (domain->dimension == 2) ? SaltDEM::nsym<2>() : SaltDEM::nsym<3>();
-  int k = 0;
-  if (comm_mode == COMM_SUBSTEP) {
-    for (int i = first; i < first + n; i++)
-      for (int c = 0; c < 3; c++) usub[3 * i + c] = buf[k++];
-    return;
-  }
-  const int nd = noslip_surface ? domain->dimension : 0;
-  for (int i = first; i < first + n; i++) {
-    vol[i] = buf[k++];
-    fill[i] = buf[k++];
-    for (int c = 0; c < ns; c++) pmat[ns * i + c] = buf[k++];
-    for (int c = 0; c < nd; c++) slip[3 * i + c] = buf[k++];
-  }
-}
-
-int PairSaltdemViscous::nmom() const
-{
-  // the header cannot include saltdem_contact.h (minimal style headers): Layout's own NS
-  static_assert(Layout<2>::NS == SaltDEM::nsym<2>() && Layout<3>::NS == SaltDEM::nsym<3>(),
-                "Layout::NS must be SaltDEM::nsym");
-  return (domain->dimension == 2) ? Layout<2>::NMOM : Layout<3>::NMOM;
+  if (comm_mode == COMM_SUBSTEP) return substep->unpack_forward_comm(n, first, buf);
+  fields->unpack_forward_comm(domain->dimension, n, first, buf);
 }
 
 int PairSaltdemViscous::pack_reverse_comm(int n, int first, double *buf)
 {
-  const int nm = nmom();
-  int k = 0;
-  if (comm_mode == COMM_SUBSTEP) {
-    for (int i = first; i < first + n; i++)
-      for (int c = 0; c < 3; c++) buf[k++] = fsub[3 * i + c];
-    return k;
-  }
-  for (int i = first; i < first + n; i++)
-    for (int c = 0; c < nm; c++) buf[k++] = moment[nm * i + c];
-  return k;
+  if (comm_mode == COMM_SUBSTEP) return substep->pack_reverse_comm(n, first, buf);
+  return fields->pack_reverse_comm(domain->dimension, n, first, buf);
 }
 
 void PairSaltdemViscous::unpack_reverse_comm(int n, int *list, double *buf)
 {
-  const int nm = nmom();
-  int k = 0;
-  if (comm_mode == COMM_SUBSTEP) {
-    for (int i = 0; i < n; i++)
-      for (int c = 0; c < 3; c++) fsub[3 * list[i] + c] += buf[k++];
-    return;
-  }
-  for (int i = 0; i < n; i++)
-    for (int c = 0; c < nm; c++) moment[nm * list[i] + c] += buf[k++];
+  if (comm_mode == COMM_SUBSTEP) return substep->unpack_reverse_comm(n, list, buf);
+  fields->unpack_reverse_comm(domain->dimension, n, list, buf);
 }
 
 double PairSaltdemViscous::memory_usage()
 {
-  return PairSaltdem::memory_usage() +
-      (2.0 + SaltDEM::NSYM + NMOM_MAX + (scratch ? 1.0 : 0.0) + (usub ? 6.0 : 0.0) +
-       (slip ? 3.0 : 0.0)) *
-      nmax * sizeof(double) +
-      (double) subpairs.capacity() * sizeof(SubPair);
+  return PairSaltdem::memory_usage() + fields->memory_usage() + substep->memory_usage() +
+      (double) scratch.capacity() * sizeof(double);
 }
 
 /* the dashpots from the viscosity, which may have been changed through extract("eta") since
@@ -917,17 +538,13 @@ double PairSaltdemViscous::init_one(int i, int j)
 }
 
 /* the saltdem/viscous styles of the run in order: this one alone, or the sub-styles of this
-   name under pair hybrid (pair_match ignores the index when the pair is not hybrid) */
+   name under pair hybrid (PairSaltdem::saltdem_styles) */
 
 std::vector<PairSaltdemViscous *> PairSaltdemViscous::substyles() const
 {
-  if (force->pair == this) return {const_cast<PairSaltdemViscous *>(this)};
   std::vector<PairSaltdemViscous *> out;
-  for (int n = 1; n <= 64; n++) {
-    auto *s = dynamic_cast<PairSaltdemViscous *>(force->pair_match(name, 0, n));
-    if (!s) break;
-    out.push_back(s);
-  }
+  for (auto *s : saltdem_styles(lmp, name))
+    if (auto *v = dynamic_cast<PairSaltdemViscous *>(s)) out.push_back(v);
   return out;
 }
 
@@ -1028,9 +645,8 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
 
 std::vector<std::string> PairSaltdemViscous::setting_names() const
 {
-  // (the settings of the layout being read: 1 before fill, 2 before substeps, 3 before noslip)
+  // (the settings of the layout being read: 1 before fill and substeps, 3 before noslip)
   if (layout_read == 1) return {"calibration", "correction", "dtfactor", "viscfactor"};
-  if (layout_read == 2) return {"calibration", "correction", "dtfactor", "viscfactor", "fill"};
   if (layout_read == 3)
     return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps"};
   return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps", "noslip"};
@@ -1054,7 +670,7 @@ void PairSaltdemViscous::unpack_settings(const double *v)
   dtfactor = v[2];
   viscfactor = v[3];
   fill_max = (layout_read == 1) ? DEFAULT_FILL_MAX : v[4];
-  substeps = (layout_read == 1 || layout_read == 2) ? 1 : (int) v[5];
+  substeps = (layout_read == 1) ? 1 : (int) v[5];
   noslip_surface = (layout_read >= 4) && v[6] != 0.0;
 }
 
@@ -1099,7 +715,7 @@ double PairSaltdemViscous::find_salt_inertia()
 
 /* "eta": per type pair viscosity (dim 2), read and changed by fix adapt and
    fix saltdem/viscosity; "calibration": dashpot per unit viscosity; "inertia": the inertia
-   factor of the salt's discs (find_salt_inertia(), collective: every rank must ask) */
+   factor of the salt's discs as of the last init (find_salt_inertia()) */
 
 void *PairSaltdemViscous::extract(const char *str, int &dim)
 {
@@ -1109,9 +725,6 @@ void *PairSaltdemViscous::extract(const char *str, int &dim)
   }
   dim = 0;
   if (strcmp(str, "calibration") == 0) return (void *) &calibration;
-  if (strcmp(str, "inertia") == 0) {
-    salt_inertia = find_salt_inertia();
-    return (void *) &salt_inertia;
-  }
+  if (strcmp(str, "inertia") == 0) return (void *) &salt_inertia;
   return nullptr;
 }

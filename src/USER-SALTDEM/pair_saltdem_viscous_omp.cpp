@@ -25,6 +25,7 @@
 
 #include "fix_saltdem_density.h"
 #include "saltdem_pair_loop.h"
+#include "saltdem_viscous_law.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -66,9 +67,10 @@ void PairSaltdemViscousOMP::compute(int eflag, int vflag)
   if (nthreads > 1 && nthreads * stride > sum_thr.size()) sum_thr.resize(nthreads * stride);
   double *serial = (nthreads > 1) ? nullptr : loop_sum();
   double *part = sum_thr.data();
+  const SaltDEM::ViscousLaw salt = law();
 
 #if defined(_OPENMP)
-#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag, bounds, nthreads, serial, part)
+#pragma omp parallel LMP_DEFAULT_NONE LMP_SHARED(eflag, vflag, bounds, nthreads, serial, part, salt)
 #endif
   {
 #if defined(_OPENMP)
@@ -91,7 +93,7 @@ void PairSaltdemViscousOMP::compute(int eflag, int vflag)
                      double dz) {
       ev_tally_xyz_thr(this, i, j, nlocal, newton_pair, e, 0.0, fx, fy, fz, dx, dy, dz, thr);
     };
-    dispatch_loop(this, bounds[tid], bounds[tid + 1], thr->get_f(), thr->get_torque(), sum, tally);
+    dispatch_loop(salt, bounds[tid], bounds[tid + 1], thr->get_f(), thr->get_torque(), sum, tally);
 
     thr->timer(Timer::PAIR);
     reduce_thr(this, eflag, vflag, thr);

@@ -1,0 +1,180 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   LAMMPS development team: developers@lammps.org
+
+   Copyright (2003) Sandia Corporation.  Under the terms of Contract
+   DE-AC04-94AL85000 with Sandia Corporation, the U.S. Government retains
+   certain rights in this software.  This software is distributed under
+   the GNU General Public License.
+
+   See the README file in the top-level LAMMPS directory.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
+   repository: discrete-element salt tectonics)
+
+   SphFields: the SPH field passes of pair saltdem/viscous (FLUID pairs) over a half
+   neighbour list, before its force pass: the kernel density (for the reference density),
+   the kernel moments, the boundary fill, the volumes and pressure matrices, the no-slip
+   offsets of boundary particles and the list of pairs within 2h (viscous sub-steps).  It
+   owns these per-atom fields (owned and ghost atoms) and reads what it is handed: no LAMMPS
+   classes, so that it can be tested alone.  The caller communicates: reverse_comm sends the
+   ghosts' kernel sums home (newton on), the fields of owned atoms go to the ghosts after.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_SALTDEM_SPH_FIELDS_H
+#define LMP_SALTDEM_SPH_FIELDS_H
+
+#include <cstddef>
+#include <functional>
+#include <new>
+#include <vector>
+
+namespace LAMMPS_NS {
+namespace SaltDEM {
+  struct ViscousParams;
+
+  // the per-atom layout of the pressure matrices and kernel sums in DIM dimensions, packed so
+  // that the sums of a 2D disc fill one cache line (8 values): a symmetric matrix has NS
+  // values (SaltDEM::nsym, checked in the .cpp); a moment row holds the fluid moment at 0, the boundary moment at
+  // NS, the kernel sums over the fluid at WF and over the boundary at WB
+  template <int DIM> struct SphLayout {
+    static constexpr int NS = (DIM == 2) ? 3 : 6;
+    static constexpr int WF = 2 * NS, WB = 2 * NS + 1, NMOM = 2 * NS + 2;
+  };
+  constexpr int SPH_NMOM_MAX = SphLayout<3>::NMOM;
+
+  // what a pass reads: per-atom arrays of the owned atoms (0..nlocal) then the ghosts (..nall),
+  // and a half neighbour list of the owned atoms (j & neighmask: the partner)
+  struct SphInput {
+    const double (*x)[3], (*v)[3];
+    const double *rmass, *radius;
+    const int *type;
+    int nlocal, nall;
+    bool newton;    // a pair with a ghost is summed into the ghost too (then sent home)
+    int inum;
+    const int *ilist, *numneigh;
+    int *const *firstneigh;
+    int neighmask;
+  };
+
+  // FLUID: what a pair weighs in its two particles' sums: mj = mu_ij, the mass of j counted
+  // in i's sums, and mi = mu_ji, and the volumes vi, vj of the pair's viscosity
+  struct Weights {
+    double mi, mj, vi, vj;
+  };
+
+  // a FLUID pair within 2h and its kernel factor kvisc (1 - r/2h)^3 (viscous sub-steps)
+  struct SubPair {
+    int i, j;
+    double c;
+  };
+
+  // rows of 64 bytes, as LAMMPS's Memory allocates per-atom arrays
+  template <class T> struct AlignedAllocator {
+    using value_type = T;
+    AlignedAllocator() = default;
+    template <class U> AlignedAllocator(const AlignedAllocator<U> &) {}
+    T *allocate(std::size_t n)
+    {
+      return static_cast<T *>(::operator new(n * sizeof(T), std::align_val_t(64)));
+    }
+    void deallocate(T *p, std::size_t) { ::operator delete(p, std::align_val_t(64)); }
+    bool operator==(const AlignedAllocator &) const { return true; }
+    bool operator!=(const AlignedAllocator &) const { return false; }
+  };
+  using AtomArray = std::vector<double, AlignedAllocator<double>>;
+
+  class SphFields {
+   public:
+    // per type pair and type (1..ntypes), set by the pair style at init: the coefficients,
+    // whether a type's own pair is FLUID, and FLUID with K > 0 (carries pressure)
+    const ViscousParams *const *params = nullptr;
+    const int *fluidself = nullptr, *isfluid = nullptr;
+    int ntypes = 0;
+    double fill_max = 1.0;      // the largest boundary fill (1: off)
+    bool noslip = false;        // noslip surface: the boundary particles' offsets (slip)
+    bool keep_pairs = false;    // list the FLUID pairs within 2h (pairs)
+
+    // per atom, owned and ghost: volume m / rho, boundary fill, material density m / r^dim,
+    // pressure matrix (NS values), kernel sums (NMOM values), no-slip offset (3 values)
+    AtomArray vol, fill, mdens, pmat, moment, slip;
+    std::vector<double> irho0;    // 1 / reference density per type (0: none)
+    std::vector<SubPair> pairs;
+
+    // room for n atoms (slip only with noslip)
+    void grow(int n);
+    double memory_usage() const;
+    // mdens of the owned and ghost atoms; returns an atom of a type in a FLUID pair
+    // (influid) without a positive radius, or -1
+    int material_density(const SphInput &in, int dim, const int *influid);
+    // the kernel density out[i] = sum_j mu_ij W_ij (j = i included) of each owned atom of a
+    // type whose own pair is FLUID, over the FLUID pairs, and whether its kernel is full
+    // (interior[i] 1: its neighbours surround it, SaltDEM::INTERIOR_MAX; else 0)
+    void kernel_density(int dim, const SphInput &in, const std::function<void()> &reverse_comm,
+                        double *out, double *interior);
+    // before the force pass: the kernel sums (and no-slip offsets), then the volume, fill and
+    // pressure matrix of each owned atom from its density rho and the reference density
+    // rho0 of its type
+    void pressure_matrices(int dim, const SphInput &in, const double *rho, const double *rho0,
+                           const std::function<void()> &reverse_comm);
+    // the communication of these fields: volume, fill, pressure matrix and no-slip offset of
+    // the owned atoms to their ghosts; the ghosts' kernel sums home (added)
+    int pack_forward_comm(int dim, int n, const int *list, double *buf) const;
+    void unpack_forward_comm(int dim, int n, int first, const double *buf);
+    int pack_reverse_comm(int dim, int n, int first, double *buf) const;
+    void unpack_reverse_comm(int dim, int n, const int *list, const double *buf);
+
+    /* what a FLUID pair weighs.  Sums over the partners j of a particle i count each j as i's
+     own material, mu_ij = m_j rho_m,i / rho_m,j = mdens_i r_j^dim (rho_m = m / r^dim per disc
+     or sphere), so that particles of two densities side by side see one continuous kernel
+     density and pressure (the volume-weighted sums of multiphase SPH, Colagrossi & Landrini
+     2003, Hu & Adams 2006); for one density mu_ij = m_j.  A boundary partner (its own pair is
+     not FLUID) of a fluid particle counts with that particle's fill (SaltDEM::boundary_fill)
+     and has the volume mu_ij / rho0_i of the fluid it stands for; between two boundary
+     particles the volumes are their own (vol). */
+    template <int DIM> double partner_mass(const double *radius, int i, int j) const
+    {
+      const double r = radius[j];
+      return mdens[i] * ((DIM == 2) ? r * r : r * r * r);
+    }
+    template <int DIM>
+    Weights pair_weights(const double *radius, int i, int j, int itype, int jtype) const
+    {
+      Weights w = {partner_mass<DIM>(radius, j, i), partner_mass<DIM>(radius, i, j), vol[i],
+                   vol[j]};
+      if (fluidself[itype] && !fluidself[jtype]) {
+        w.mj *= fill[i];
+        w.vj = w.mj * irho0[itype];
+      } else if (fluidself[jtype] && !fluidself[itype]) {
+        w.mi *= fill[j];
+        w.vi = w.mi * irho0[jtype];
+      }
+      return w;
+    }
+    // noslip surface: what the viscosity adds to v_i - v_j of a fluid-boundary pair (the
+    // boundary's offset); false (ov untouched) for any other pair
+    template <int DIM> bool noslip_pair(int i, int j, int itype, int jtype, double *ov) const
+    {
+      if (!noslip || fluidself[itype] == fluidself[jtype]) return false;
+      const double *o = fluidself[itype] ? &slip[3 * j] : &slip[3 * i];
+      const double sign = fluidself[itype] ? -1.0 : 1.0;
+      for (int k = 0; k < DIM; k++) ov[k] = sign * o[k];
+      return true;
+    }
+
+   private:
+    template <int DIM>
+    void kernel_density(const SphInput &, const std::function<void()> &, double *, double *);
+    template <int DIM> void kernel_moments(const SphInput &, const std::function<void()> &);
+    template <int DIM> void noslip_offsets(const SphInput &);
+    template <int DIM>
+    void pressure_matrices(const SphInput &, const double *, const double *,
+                           const std::function<void()> &);
+  };
+}    // namespace SaltDEM
+}    // namespace LAMMPS_NS
+
+#endif

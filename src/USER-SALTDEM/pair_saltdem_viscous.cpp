@@ -577,7 +577,7 @@ void PairSaltdemViscous::limits_checked()
    bounds lambda_max by 2 max sum(gamma) / m.  FLUID: the kernel sums to sum(gamma) =
    7 eta V / h^2 (2D and 3D), which with V = 1/sum W gives dt < S m h^2 / (7 eta V); the
    constant 0.175 S rho h^2 / (correction eta) (viscfactor 1, rho the disc density) is the
-   lowest limit measured (bench/stable_limit.py: 0.177 at S 200 near the sound limit,
+   lowest limit measured (bench/validation/stable_limit.py: 0.177 at S 200 near the sound limit,
    0.197-0.211 in channels at S 5-80, 0.22-0.26 in the Expt 1 scene; Gershgorin's bound with
    V = disc/0.7 is 0.1).  CONTACT: a disc's tangential dashpot
    also spins it (SaltDEM::rotation_factor), so dt < m / (g (1 + rot ratio)); measured

@@ -28,6 +28,7 @@
 #define LMP_SALTDEM_SPH_FIELDS_H
 
 #include <cstddef>
+#include <cstdlib>
 #include <functional>
 #include <new>
 #include <vector>
@@ -72,20 +73,40 @@ namespace SaltDEM {
     double c;
   };
 
-  // rows of 64 bytes, as LAMMPS's Memory allocates per-atom arrays
-  template <class T> struct AlignedAllocator {
-    using value_type = T;
-    AlignedAllocator() = default;
-    template <class U> AlignedAllocator(const AlignedAllocator<U> &) {}
-    T *allocate(std::size_t n)
+  // a per-atom array grown in place as LAMMPS's Memory::grow grows one (realloc, contents
+  // kept, new entries not initialized unless a value is given): with a std::vector here the
+  // process's resident size grew each time the pair style was created anew
+  class AtomArray {
+   public:
+    AtomArray() = default;
+    AtomArray(const AtomArray &) = delete;
+    AtomArray &operator=(const AtomArray &) = delete;
+    ~AtomArray() { std::free(p); }
+    void resize(std::size_t m)
     {
-      return static_cast<T *>(::operator new(n * sizeof(T), std::align_val_t(64)));
+      if (m == n) return;
+      void *q = std::realloc(p, (m ? m : 1) * sizeof(double));
+      if (!q) throw std::bad_alloc();
+      p = static_cast<double *>(q);
+      n = m;
     }
-    void deallocate(T *p, std::size_t) { ::operator delete(p, std::align_val_t(64)); }
-    bool operator==(const AlignedAllocator &) const { return true; }
-    bool operator!=(const AlignedAllocator &) const { return false; }
+    void resize(std::size_t m, double value)
+    {
+      const std::size_t old = n;
+      resize(m);
+      for (std::size_t k = old; k < m; k++) p[k] = value;
+    }
+    std::size_t size() const { return n; }
+    std::size_t capacity() const { return n; }
+    double *data() { return p; }
+    const double *data() const { return p; }
+    double &operator[](std::size_t k) { return p[k]; }
+    const double &operator[](std::size_t k) const { return p[k]; }
+
+   private:
+    double *p = nullptr;
+    std::size_t n = 0;
   };
-  using AtomArray = std::vector<double, AlignedAllocator<double>>;
 
   class SphFields {
    public:

@@ -142,19 +142,22 @@ void SaltdemReadRestart::command(int narg, char **arg)
   MPI_Bcast(&status, 1, MPI_INT, 0, world);
   MPI_Bcast(&bytes, 1, MPI_DOUBLE, 0, world);
   const std::string sum = SaltDEM::checksum_path(file);
-  if (status == 1)
-    error->all(FLERR, "saltdem/read_restart: cannot read {}; {}", file, advice(file));
+  // what to do instead reads and hashes the other file of the pair: once, on the rank that
+  // prints, and only for a message that may be printed (an error, or the watchdog's)
+  const std::string hint = (comm->me == 0 && (status != 0 || timeout != 0.0)) ? advice(file)
+                                                                              : std::string();
+  if (status == 1) error->all(FLERR, "saltdem/read_restart: cannot read {}; {}", file, hint);
   if (status == 2)
     error->all(FLERR,
                "saltdem/read_restart: {} does not match its checksum {} (damaged, or cut short "
                "while written); {}",
-               file, sum, advice(file));
+               file, sum, hint);
   if (status == 4)
-    error->all(FLERR, "saltdem/read_restart: checksum file {} is damaged; {}", sum, advice(file));
+    error->all(FLERR, "saltdem/read_restart: checksum file {} is damaged; {}", sum, hint);
   if (status == 3) {
     if (required)
       error->all(FLERR, "saltdem/read_restart: {} has no checksum file {} (checksum required); {}",
-                 file, sum, advice(file));
+                 file, sum, hint);
     if (comm->me == 0)
       error->warning(FLERR, "saltdem/read_restart: {} has no checksum file {}: not verified", file,
                      sum);
@@ -166,7 +169,7 @@ void SaltdemReadRestart::command(int narg, char **arg)
     const std::string msg = fmt::format(
         "ERROR: saltdem/read_restart: reading {} did not finish within {:.0f} s: the file is "
         "damaged; {}\n",
-        file, timeout, advice(file));
+        file, timeout, hint);
     watchdog_length = std::min(msg.size(), sizeof(watchdog_message));
     memcpy(watchdog_message, msg.data(), watchdog_length);
     // the handler ends the process without flushing: what is buffered goes out now

@@ -14,11 +14,9 @@ import shutil
 import subprocess
 import threading
 import time
+from types import SimpleNamespace
 
-import pytest
-
-import mpistart
-from lmprun import ROOT, lmp_path
+from lmprun import ROOT, lmp_path, run_cmd
 
 SCENE_DECK = (ROOT / "tests" / "decks" / "scene_mini.in").read_text()
 
@@ -173,17 +171,13 @@ def run_watched(deck, workdir, timeout=600, period=0.05, **variables):
     for k, v in variables.items():
         cmd += ["-var", k, str(v)]
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
-    for k in range(mpistart.TRIES):
-        rc, out, samples = _watched(cmd, workdir, env, timeout, period)
-        if rc == 0 or not mpistart.start_failed(out):
-            return rc, out, samples
-        if k + 1 < mpistart.TRIES:
-            time.sleep(mpistart.BACKOFF[min(k, len(mpistart.BACKOFF) - 1)])
-    pytest.fail(f"INFRASTRUCTURE FAILURE, not a test result: Open MPI failed to start lmp "
-                f"{mpistart.TRIES} times (exit {rc})", pytrace=False)
+    # run_cmd retries a start that Open MPI failed and fails the test as infrastructure
+    proc = run_cmd(cmd, runner=lambda c, **kw: _watched(c, workdir, env, timeout, period))
+    return proc.returncode, proc.stdout, proc.samples
 
 
 def _watched(cmd, workdir, env, timeout, period):
+    """One watched run: its return code, output (stdout) and samples."""
     proc = subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             text=True, env=env)
     samples = []
@@ -207,7 +201,7 @@ def _watched(cmd, workdir, env, timeout, period):
         th.join()
         if proc.poll() is None:
             proc.kill()
-    return proc.returncode, out, samples
+    return SimpleNamespace(returncode=proc.returncode, stdout=out, stderr="", samples=samples)
 
 
 def heap_mb(out):

@@ -55,7 +55,8 @@ study=("base expt1 0.05" "endwall_smooth expt1 0.05 -var endwall smooth"
        "eta10x expt1 0.05 -var eta 5e9 -var S 40" "eta100x expt1 0.05 -var eta 5e10 -var S 400"
        "eta1000x expt1 0.05 -var eta 5e11 -var S 4000"
        "salt_contact expt1 0.05 -var saltlaw contact -var csalt_cal 0.5"
-       "frame_damping expt1 0.05 -var eta 5e6 -var damping 5e4")
+       "frame_damping expt1 0.05 -var eta 5e6 -var damping 5e4"
+       "frame_damping_all expt1 0.05 -var eta 5e6 -var damping 5e4 -var damping_group all")
 cs="-var saltlaw contact"
 contact=("expt1_contact expt1 0.05 $cs" "expt3_contact expt3 0.05 $cs" "expt2_contact expt2 0.05 $cs"
          "fig7_salt1000_contact expt1 0.05 -var dip 65 -var salt 1000 $cs"

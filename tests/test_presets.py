@@ -74,11 +74,12 @@ def test_low_rate_scales_the_viscous_group(tmp_path):
 
 # the study's variants (docs/scenes.md): each runs on the tiny scene and says so
 VARIANTS = [
-    (dict(endwall="smooth"), "salt law sph, end walls smooth, frame damping of the salt 0"),
+    (dict(endwall="smooth"), "salt law sph, end walls smooth, frame damping 0 Pa s/m^2 on salt"),
     (dict(endwall="bonded"), "salt law sph, end walls bonded"),
     (dict(rightwall="fixed"), "salt law sph, end walls rough"),
     (dict(saltlaw="contact"), "salt law contact, end walls rough"),
-    (dict(damping="5e4"), "frame damping of the salt 5e4 Pa s/m^2"),
+    (dict(damping="5e4"), "frame damping 5e4 Pa s/m^2 on salt"),
+    (dict(damping="5e4", damping_group="all"), "frame damping 5e4 Pa s/m^2 on all"),
 ]
 
 
@@ -104,6 +105,7 @@ def test_fixed_right_wall_stays(tmp_path):
     (dict(endwall="glued"), "endwall glued must be rough, smooth or bonded"),
     (dict(saltlaw="granular"), "saltlaw granular must be sph or contact"),
     (dict(rightwall="away"), "rightwall away must be moving or fixed"),
+    (dict(damping_group="cover"), "damping_group cover must be salt or all"),
     (dict(preset="huge"), "preset huge must be full, medium, quick or tiny"),
 ])
 def test_bad_variant_stops(tmp_path, opts, words):

@@ -11,6 +11,8 @@
 #   study    quick Expt 1 changing one assumption at a time (docs/scenes.md)
 #   contact  the paper's kind of salt (-var saltlaw contact, docs/scenes.md): expts, fig7 and
 #            fig6 with disc-contact salt instead of the default Newtonian SPH salt
+#   fv       the frictional-viscous salt (-var saltmodel paper, docs/scenes.md): Expts 1-3 at
+#            both of Fig. 6's rates and fig7
 #   eta100   Expts 1-3 with salt 100x more viscous than the paper states (5e10 Pa s, S x100 to
 #            keep the Reynolds number): the Newtonian salt as strong as the paper's kind of salt
 #            is under the scenes' overburden (docs/scenes.md), at both of Fig. 6's rates
@@ -25,14 +27,15 @@
 # paper's 1000 m at the paper's physics (examples/scene/params.in).
 # Output: out/SERIES_PRESET/NAME/ with the frames, log, figures/NAME.png, outcomes/outcomes.md,
 # wall.txt and cmd.txt (the run's lmp command); OUT=DIR puts them under DIR instead of out/.
-# A finished run (its 'done' file) is skipped; an interrupted one resumes from the newer of its
+# SALTMODEL=paper runs any series with the paper's salt (-var saltmodel paper) into
+# out/SERIES_PRESET_paper/.  A finished run (its 'done' file) is skipped; an interrupted one resumes from the newer of its
 # restart files that matches its checksum (the older one if the newer is damaged).  LMP (default build/lmp) and
 # MPIRUN (e.g. "mpirun -np 8") choose how lmp runs; ONLY="NAME ..." runs only those runs of
 # the series (e.g. to split a series between cores: one run-series.sh per core, each with its
 # own ONLY list).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|eta100|syntectonic|wedge|gallery [full|medium|quick|tiny] [-- lmp args]}
+series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|fv|eta100|syntectonic|wedge|gallery [full|medium|quick|tiny] [-- lmp args]}
 preset=${2:-full}
 shift $(( $# >= 2 ? 2 : 1 ))
 [ "${1:-}" = "--" ] && shift
@@ -64,6 +67,12 @@ contact=("expt1_contact expt1 0.05 $cs" "expt3_contact expt3 0.05 $cs" "expt2_co
          "fig7_salt250_contact expt1 0.05 -var dip 65 -var salt 250 $cs"
          "expt1_slow_contact expt1 0.01 $cs" "expt3_slow_contact expt3 0.01 $cs"
          "expt2_slow_contact expt2 0.01 $cs")
+fvs="-var saltmodel paper"
+fv=("expt1_fv expt1 0.05 $fvs" "expt2_fv expt2 0.05 $fvs" "expt3_fv expt3 0.05 $fvs"
+    "expt1_slow_fv expt1 0.01 $fvs" "expt3_slow_fv expt3 0.01 $fvs" "expt2_slow_fv expt2 0.01 $fvs"
+    "fig7_salt1000_fv expt1 0.05 -var dip 65 -var salt 1000 $fvs"
+    "fig7_salt500_fv expt1 0.05 -var dip 65 -var salt 500 $fvs"
+    "fig7_salt250_fv expt1 0.05 -var dip 65 -var salt 250 $fvs")
 syntectonic=("expt1 expt1 0.05" "expt1_sedfill expt1 0.05 -var sediment fill")
 wedge=("wedge wedge 0.317")
 eta100=("expt1_eta100x expt1 0.05 -var eta 5e10 -var S 400" "expt3_eta100x expt3 0.05 -var eta 5e10 -var S 400"
@@ -80,12 +89,20 @@ case $series in
   study) runs=("${study[@]}") ;;
   contact) runs=("${contact[@]}") ;;
   eta100) runs=("${eta100[@]}") ;;
+  fv)    runs=("${fv[@]}") ;;
   syntectonic) runs=("${syntectonic[@]}") ;;
   wedge) runs=("${wedge[@]}") ;;
   gallery)
     if [ "$preset" = medium ]; then runs=("expt1 expt1 0.05" "expt3 expt3 0.05" "${fig7[@]}")
     else runs=("${expts[@]}" "${fig7[@]}" "${eta100[@]}" "${contact[@]}" "${seeds[@]}" "${fig6[@]}"); fi ;;
-  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, eta100, syntectonic, wedge or gallery" >&2; exit 2 ;;
+  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, fv, eta100, syntectonic, wedge or gallery" >&2; exit 2 ;;
+esac
+msuffix=""
+case ${SALTMODEL:-} in
+  ""|stated) ;;
+  paper) for k in "${!runs[@]}"; do runs[$k]="${runs[$k]} -var saltmodel paper"; done
+         msuffix=_paper ;;
+  *) echo "run-series: SALTMODEL '$SALTMODEL' must be stated or paper" >&2; exit 2 ;;
 esac
 
 # The restart file to resume NAME from: the newest of the pair in DIR that matches its checksum
@@ -114,7 +131,7 @@ pick_restart() {
 for r in "${runs[@]}"; do
   read -r name deck rate vars <<< "$r"
   [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]] && continue
-  out="${OUT:-$root/out}/${series}_${preset}/$name"
+  out="${OUT:-$root/out}/${series}_${preset}${msuffix}/$name"
   if [ -f "$out/done" ]; then echo "run-series: $name done already ($out)"; continue; fi
   mkdir -p "$out"
   resume=()

@@ -493,8 +493,8 @@ void PairSaltdem::read_restart_settings(FILE *fp)
     utils::sfread(FLERR, v.data(), sizeof(double), v.size(), fp, nullptr, error);
   MPI_Bcast(v.data(), (int) v.size(), MPI_DOUBLE, 0, world);
   unpack_settings(v.data());
+  const auto coeffs = coeff_names();    // (also of the layout being read)
   layout_read = 0;
-  const auto coeffs = coeff_names();
   read_names(fp, coeffs, "coefficients");
   ncoeff_read = (int) coeffs.size();
 }

@@ -90,6 +90,9 @@ class PairSaltdemViscous : public PairSaltdem {
   std::vector<double> scratch;    // no FLUID pair: what the force pass sums the (zero) q into
   class FixSaltdemDensity *fix_density;    // FLUID: the density (state) and d rho / dt
   std::string density_id;                  // its ID
+  class FixSaltdemPlastic *fix_plastic;    // FLUID with yield: the plastic stress (state)
+  std::string plastic_id;                  // its ID
+  std::vector<int> isplastic;              // per type: FLUID with K > 0 and a plastic strength
   int *fluidself;    // per type: its own pair is FLUID (continuity density, reference density)
   int *isfluid;      // per type: FLUID with K > 0 (carries pressure)
   int nmax;          // the atoms the per-atom arrays have room for
@@ -109,6 +112,11 @@ class PairSaltdemViscous : public PairSaltdem {
 
   SaltDEM::ViscousLaw law() const;    // the law policy of the shared pair loop
   int parse_substeps(const char *);
+  void parse_plastic(int narg, char **arg, SaltDEM::ViscousParams &p, const char *usage);
+  // the internal fix of style STYLE that keeps some of this style's state (its ID: STYLE, or
+  // STYLE_N for the N-th saltdem/viscous sub-style of pair hybrid; the same for the same deck
+  // after read_restart, so that it finds its data in a restart file)
+  template <class F> F *internal_fix(const char *style, std::string &id, const char *what);
   void grow_arrays();         // the per-atom arrays for the owned and ghost atoms
   void material_density();    // (SphFields::material_density) or the error of a disc without size
   SaltDEM::SphInput sph_input() const;    // the atoms and list of the field passes
@@ -125,8 +133,9 @@ class PairSaltdemViscous : public PairSaltdem {
   void pair_limit(int, int, double, double, bool, double &, std::string &) override;
   // 2: the setting fill, 3: substeps, 4: noslip; layouts 1 and 3 are read (fill 1, substeps
   // 1, noslip centre); layout 2 was never released
-  int restart_version() const override { return 4; }
-  std::vector<int> restart_versions_read() const override { return {1, 3, 4}; }
+  // 5: the plastic strength (yield, modulus)
+  int restart_version() const override { return 5; }
+  std::vector<int> restart_versions_read() const override { return {1, 3, 4, 5}; }
   std::vector<std::string> setting_names() const override;
   void pack_settings(double *) const override;
   void unpack_settings(const double *) override;

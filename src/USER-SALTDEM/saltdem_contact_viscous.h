@@ -67,6 +67,9 @@ namespace SaltDEM {
     double gap;       // CONTACT: the dashpots act up to this gap beyond contact (length)
     double ratio;     // CONTACT: tangential / normal dashpot coefficient
     double gn, gt;    // CONTACT: dashpot coefficients (derived: calibration * eta)
+    double mu_y;      // FLUID: plastic strength C + mu_y max(P, 0) (saltdem_plastic.h); 0, 0:
+    double coh_y;     // FLUID: none, a Newtonian fluid
+    double G;         // FLUID: shear modulus of the plastic stress (its elastic part)
   };
 
   /* FLUID: the equation of state P = K (rho / rho0 - 1): a fluid at its reference density

@@ -21,6 +21,7 @@
 #include "saltdem_sph_fields.h"
 
 #include "saltdem_contact_viscous.h"
+#include "saltdem_plastic.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,12 +42,14 @@ void SphFields::grow(int n)
     moment.resize((size_t) SPH_NMOM_MAX * n);
   }
   if (noslip && (int) slip.size() < 3 * (int) vol.size()) slip.resize(3 * vol.size(), 0.0);
+  if (plastic && vgrad.size() < (size_t) PLASTIC_NVG_MAX * vol.size())
+    vgrad.resize((size_t) PLASTIC_NVG_MAX * vol.size(), 0.0);
 }
 
 double SphFields::memory_usage() const
 {
   return (double) (vol.capacity() + fill.capacity() + mdens.capacity() + pmat.capacity() +
-                   moment.capacity() + slip.capacity()) *
+                   moment.capacity() + slip.capacity() + vgrad.capacity()) *
       sizeof(double) +
       (double) pairs.capacity() * sizeof(SubPair);
 }
@@ -173,7 +176,10 @@ void SphFields::pressure_matrices(const SphInput &in, const double *rho, const d
   const int *type = in.type;
   const int nt = ntypes;
 
-  kernel_moments<DIM>(in, reverse_comm);
+  if (plastic)
+    kernel_moments<DIM, true>(in, reverse_comm);
+  else
+    kernel_moments<DIM, false>(in, reverse_comm);
   if (noslip) noslip_offsets<DIM>(in);
 
   // a boundary particle (wall, cover) has, beside a fluid particle, the volume of the fluid it
@@ -197,10 +203,43 @@ void SphFields::pressure_matrices(const SphInput &in, const double *rho, const d
     if (isfluid[t]) {
       const double a = pressure_term(m[i], params[t][t].K, r, rho0[t]);
       for (int k = 0; k < L::NS; k++) A[k] = M[k] + fill[i] * M[L::NS + k];
+      // the plastic stress, sigma = -P I + tau: its pair force (mu_ij T_i + mu_ji T_j) grad W
+      // with T = -m tau / rho^2, corrected as the pressure is (symmetrized)
+      double T[L::NS] = {};
+      if (plastic && isplastic[t]) {
+        plastic_rates<DIM>(in, i, rho0);
+        corrected_stress<DIM>(&tau[NSYM * i], A, r, CORRECTION_DET_MIN, T);
+      }
       pressure_matrix<DIM>(a, r, A);
+      if (plastic && isplastic[t])
+        for (int k = 0; k < L::NS; k++) A[k] -= m[i] / (r * r) * T[k];
     } else
       for (int k = 0; k < L::NS; k++) A[k] = 0.0;
+    if (plastic && !(isfluid[t] && isplastic[t])) {
+      for (int k = 0; k < NSYM; k++) dtau[NSYM * i + k] = 0.0;
+      ystress[i] = 0.0;
+    }
   }
+}
+
+/* plastic: the velocity gradient of owned fluid particle i from its sums (fluid and boundary
+   partners, the latter with the fill, over the moment of its pressure matrix: pmat holds that
+   moment when this is called), the rate of its plastic stress and its strength from the
+   pressure of its density */
+
+template <int DIM> void SphFields::plastic_rates(const SphInput &in, int i, const double *rho0)
+{
+  using L = SphLayout<DIM>;
+  using PL = PlasticLayout<DIM>;
+  const int t = in.type[i];
+  const ViscousParams &p = params[t][t];
+  const double *VG = &vgrad[PLASTIC_NVG_MAX * i];
+  double G[PL::NG], gv[PL::NG];
+  for (int k = 0; k < PL::NG; k++) G[k] = VG[k] + fill[i] * VG[PL::NG + k];
+  const double rho = vol[i] > 0.0 ? in.rmass[i] / vol[i] : rho0[t];
+  velocity_gradient<DIM>(G, &pmat[L::NS * i], rho, CORRECTION_DET_MIN, gv);
+  plastic_stress_rate<DIM>(p.G, gv, &tau[NSYM * i], &dtau[NSYM * i]);
+  ystress[i] = plastic_yield(p.mu_y, p.coh_y, eos_pressure(p.K, rho, rho0[t]));
 }
 
 /* the kernel sums of the owned particles of the types whose own pair is FLUID, over the FLUID
@@ -212,11 +251,12 @@ void SphFields::pressure_matrices(const SphInput &in, const double *rho, const d
    slots NS.. (SphLayout; noslip_offsets); with newton on the ghosts' parts go home; with
    keep_pairs also the list of the FLUID pairs within 2h and their kernel factors */
 
-template <int DIM>
+template <int DIM, bool PLASTIC>
 void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &reverse_comm)
 {
   using L = SphLayout<DIM>;
   constexpr int NS = L::NS;
+  constexpr int NG = PlasticLayout<DIM>::NG;
   const auto x = in.x;
   const auto v = in.v;
   const double *m = in.rmass;
@@ -226,6 +266,8 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
   const bool newton_pair = in.newton;
   double *moment = this->moment.data();
   std::fill_n(moment, L::NMOM * (newton_pair ? in.nall : nlocal), 0.0);
+  double *vg = PLASTIC ? vgrad.data() : nullptr;
+  if (PLASTIC) std::fill_n(vg, PLASTIC_NVG_MAX * (newton_pair ? in.nall : nlocal), 0.0);
   const bool sub = keep_pairs;
   const bool ext = noslip;
   // a boundary particle b's sums of a fluid partner f at d = x_f - x_b (sign: +1) or x_b - x_f
@@ -245,6 +287,7 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
     const int *jlist = in.firstneigh[i];
     const ViscousParams *prow = params[itype];
     double Mi[L::NMOM] = {};    // i's sums, stored once
+    double Gi[PLASTIC ? 2 * NG : 1] = {};
     if (fi) Mi[L::WF] = m[i] * wendland_c2(DIM, prow[itype].h, 0.0);
     for (int jj = 0; jj < in.numneigh[i]; jj++) {
       const int j = jlist[jj] & in.neighmask;
@@ -261,16 +304,22 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
       const double w = p.cw * s * s * s;
       const double W = wendland_c2_s(p.cW, s);
       // i's partner j goes into i's fluid or boundary sums, and i into j's
+      double dv[3] = {0.0, 0.0, 0.0};
+      if (PLASTIC)
+        for (int k = 0; k < DIM; k++) dv[k] = v[i][k] - v[j][k];
       if (fi) {
         const double mij = partner_mass<DIM>(radius, i, j);
         add_moment<DIM>(mij * w, d, fj ? Mi : Mi + NS);
         Mi[fj ? L::WF : L::WB] += mij * W;
+        if (PLASTIC) add_velocity_gradient<DIM>(mij * w, dv, d, fj ? Gi : Gi + NG);
       }
       if (fj && (newton_pair || j < nlocal)) {
         const double mji = partner_mass<DIM>(radius, j, i);
         double *Mj = &moment[L::NMOM * j];
         add_moment<DIM>(mji * w, d, fi ? Mj : Mj + NS);
         Mj[fi ? L::WF : L::WB] += mji * W;
+        if (PLASTIC)
+          add_velocity_gradient<DIM>(mji * w, dv, d, &vg[PLASTIC_NVG_MAX * j + (fi ? 0 : NG)]);
       }
       if (ext && fi != fj) {
         if (fj)
@@ -281,6 +330,8 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
     }
     if (fi || ext)
       for (int k = 0; k < L::NMOM; k++) moment[L::NMOM * i + k] += Mi[k];
+    if (PLASTIC && fi)
+      for (int k = 0; k < 2 * NG; k++) vg[PLASTIC_NVG_MAX * i + k] += Gi[k];
   }
   if (newton_pair) reverse_comm();
 }
@@ -336,16 +387,22 @@ void SphFields::unpack_forward_comm(int dim, int n, int first, const double *buf
 int SphFields::pack_reverse_comm(int dim, int n, int first, double *buf) const
 {
   const int nm = (dim == 2) ? SphLayout<2>::NMOM : SphLayout<3>::NMOM;
+  const int ng = plastic ? ((dim == 2) ? PlasticLayout<2>::NVG : PlasticLayout<3>::NVG) : 0;
   int k = 0;
-  for (int i = first; i < first + n; i++)
+  for (int i = first; i < first + n; i++) {
     for (int c = 0; c < nm; c++) buf[k++] = moment[nm * i + c];
+    for (int c = 0; c < ng; c++) buf[k++] = vgrad[PLASTIC_NVG_MAX * i + c];
+  }
   return k;
 }
 
 void SphFields::unpack_reverse_comm(int dim, int n, const int *list, const double *buf)
 {
   const int nm = (dim == 2) ? SphLayout<2>::NMOM : SphLayout<3>::NMOM;
+  const int ng = plastic ? ((dim == 2) ? PlasticLayout<2>::NVG : PlasticLayout<3>::NVG) : 0;
   int k = 0;
-  for (int i = 0; i < n; i++)
+  for (int i = 0; i < n; i++) {
     for (int c = 0; c < nm; c++) moment[nm * list[i] + c] += buf[k++];
+    for (int c = 0; c < ng; c++) vgrad[PLASTIC_NVG_MAX * list[i] + c] += buf[k++];
+  }
 }

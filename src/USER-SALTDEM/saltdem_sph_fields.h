@@ -118,10 +118,19 @@ namespace SaltDEM {
     double fill_max = 1.0;      // the largest boundary fill (1: off)
     bool noslip = false;        // noslip surface: the boundary particles' offsets (slip)
     bool keep_pairs = false;    // list the FLUID pairs within 2h (pairs)
+    // frictional-viscous fluid (SaltDEM::PlasticLayout, saltdem_plastic.h): per type, its own
+    // pair has a plastic strength; set: the velocity gradients are summed and the plastic
+    // stress tau of the owned atoms (stride NSYM, FixSaltdemPlastic's) joins their pressure
+    // matrices, and the pass writes its rate dtau and the strength ystress of each owned atom
+    const int *isplastic = nullptr;
+    bool plastic = false;
+    const double *tau = nullptr;
+    double *dtau = nullptr, *ystress = nullptr;
 
     // per atom, owned and ghost: volume m / rho, boundary fill, material density m / r^dim,
     // pressure matrix (NS values), kernel sums (NMOM values), no-slip offset (3 values)
     AtomArray vol, fill, mdens, pmat, moment, slip;
+    AtomArray vgrad;              // plastic: the velocity-gradient sums (PlasticLayout::NVG values)
     std::vector<double> irho0;    // 1 / reference density per type (0: none)
     std::vector<SubPair> pairs;
 
@@ -189,7 +198,9 @@ namespace SaltDEM {
    private:
     template <int DIM>
     void kernel_density(const SphInput &, const std::function<void()> &, double *, double *);
-    template <int DIM> void kernel_moments(const SphInput &, const std::function<void()> &);
+    template <int DIM, bool PLASTIC>
+    void kernel_moments(const SphInput &, const std::function<void()> &);
+    template <int DIM> void plastic_rates(const SphInput &, int i, const double *rho0);
     template <int DIM> void noslip_offsets(const SphInput &);
     template <int DIM>
     void pressure_matrices(const SphInput &, const double *, const double *,

@@ -36,7 +36,7 @@ ETA, RHO, S_PAPER = PAPER["eta"], PAPER["rho"], PAPER["S"]
 RMIN, RMAX = PAPER["rmin"], PAPER["rmax"]
 PACK = dict(W=1000, H=500, seed=7)
 NSTEPS = 10000
-SALT_PAPER = dict(mu=0.1, eta=5e8)    # the frictional-viscous salt of the scenes (params.in)
+SALT_PAPER = dict(mu=0.085, eta=8.8e8)    # the scenes' frictional-viscous salt (examples/scene/params.in)
 
 
 def test_plastic_math_alone(tmp_path):

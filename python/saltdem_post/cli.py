@@ -397,7 +397,51 @@ def _parser() -> argparse.ArgumentParser:
                    help="keystone: a column is deformed when this fraction of its cover is strong "
                         "(default %(default)s)")
     s.add_argument("--title", help="heading of outcomes.md")
+
+    s = sub.add_parser("compare", help="runs side by side against the paper's statements, per stage",
+                       description="runs side by side against the paper's statements, per stage, "
+                                   "from their outcomes.json (saltdem-post outcomes)")
+    s.set_defaults(func=cmd_compare)
+    s.add_argument("outcomes", nargs="+", help="outcomes.json of each run")
+    s.add_argument("--labels", nargs="+", help="a name per run (column headings)")
+    s.add_argument("--scene", default="expt1", help="the paper's scene: expt1, expt2, expt3 (default %(default)s)")
+    s.add_argument("--figures", nargs="+", help="the runs' figures (PNG), put side by side")
+    s.add_argument("-o", "--output", default="saltdem_post_out", help="output directory")
+    s.add_argument("--name", default="comparison.md")
+    s.add_argument("--figure-name", default="comparison.png")
+    s.add_argument("--check", metavar="FILE", help="only say whether FILE is what the outcomes give")
     return p
+
+
+def cmd_compare(args) -> dict:
+    """Runs side by side against the paper: comparison.md (printed too) and, with --figures,
+    one image of their figures."""
+    import json
+    from .compare import comparison_markdown, side_by_side
+    labels = args.labels or [f"run {k + 1}" for k in range(len(args.outcomes))]
+    if len(labels) != len(args.outcomes):
+        raise ValueError(f"{len(labels)} --labels for {len(args.outcomes)} outcomes files")
+    runs = {lab: json.load(open(p)) for lab, p in zip(labels, args.outcomes)}
+    text = comparison_markdown(args.scene, runs)
+    if args.check:
+        old = open(args.check).read()
+        if old != text:
+            raise ValueError(f"{args.check} is not what the outcomes give now: run saltdem-post compare again")
+        _say(f"{args.check}: up to date")
+        return {"markdown": text}
+    os.makedirs(args.output, exist_ok=True)
+    md = os.path.join(args.output, args.name)
+    with open(md, "w") as f:
+        f.write(text)
+    _say(text)
+    _say(f"written: {md}")
+    if args.figures:
+        if len(args.figures) != len(labels):
+            raise ValueError(f"{len(args.figures)} --figures for {len(labels)} runs")
+        png = os.path.join(args.output, args.figure_name)
+        side_by_side(args.figures, labels, png)
+        _say(f"written: {png}")
+    return {"markdown": text}
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

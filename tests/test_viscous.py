@@ -625,7 +625,8 @@ def pc2(c):
 
 @pytest.mark.parametrize("kw,words", [
     (dict(pc=pc1("1 1 5e8 1e7 fluid 28")), ["saltdem/viscous", "'fluid' takes h and K", "got 1"]),
-    (dict(pc=pc1("1 1 5e8 1e7 fluid 28 1e8 3")), ["saltdem/viscous", "'fluid' takes h and K"]),
+    (dict(pc=pc1("1 1 5e8 1e7 fluid 28 1e8 3")), ["saltdem/viscous", "unexpected or incomplete '3'",
+                                              "after 'fluid h K'"]),
     (dict(pc=pc1("1 1 5e8 1e7 fluid")), ["saltdem/viscous", "6 or more", "got 5"]),
     (dict(pc=pc1("1 1 5e8")), ["saltdem/viscous", "6 or more", "got 3"]),
     (dict(pc=pc2("2 2 5e8 5e9 contact 0.5 tangential")), ["saltdem/viscous", "contact 0.5",

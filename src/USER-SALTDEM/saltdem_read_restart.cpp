@@ -22,7 +22,8 @@
    names the other file of an .a/.b pair.  A watchdog ends the process with
    an error if reading takes longer than the timeout: LAMMPS's reader has no
    checks of its own, and a damaged per-atom record can loop forever
-   (default: 60 s plus 1 s per 10 MB of file; 0: no watchdog).
+   (default: 60 s plus 1 s per 10 MB of file; 0: no watchdog).  A file no
+   checksum verified that crashes the reader ends in an error too.
 ------------------------------------------------------------------------- */
 
 #include "saltdem_read_restart.h"
@@ -48,6 +49,9 @@ char watchdog_message[1024];
 size_t watchdog_length = 0;
 int watchdog_fd[2] = {-1, -1};    // screen and log file
 
+char crash_message[1024];
+size_t crash_length = 0;
+
 extern "C" void watchdog_expired(int)
 {
   // only async-signal-safe calls here
@@ -55,6 +59,21 @@ extern "C" void watchdog_expired(int)
     if (fd >= 0 && write(fd, watchdog_message, watchdog_length) < 0) break;
   _exit(1);
 }
+
+extern "C" void read_crashed(int)
+{
+  for (int fd : watchdog_fd)
+    if (fd >= 0 && write(fd, crash_message, crash_length) < 0) break;
+  _exit(1);
+}
+
+void set_message(char *buf, size_t &len, const std::string &msg)
+{
+  len = std::min(msg.size(), sizeof(watchdog_message));
+  memcpy(buf, msg.data(), len);
+}
+
+const int CRASH_SIGNALS[] = {SIGSEGV, SIGBUS, SIGFPE};
 
 // the other file of a restart pair written as NAME.a / NAME.b
 std::string other_of_pair(const std::string &file)
@@ -164,15 +183,12 @@ void SaltdemReadRestart::command(int narg, char **arg)
   }
 
   if (timeout < 0.0) timeout = 60.0 + bytes / 1e7;
-  struct sigaction act, old;
-  if (timeout > 0.0) {
-    const std::string msg = fmt::format(
-        "ERROR: saltdem/read_restart: reading {} did not finish within {:.0f} s: the file is "
-        "damaged; {}\n",
-        file, timeout, hint);
-    watchdog_length = std::min(msg.size(), sizeof(watchdog_message));
-    memcpy(watchdog_message, msg.data(), watchdog_length);
-    // the handler ends the process without flushing: what is buffered goes out now
+  // two guards on the read itself, as LAMMPS's reader checks nothing: a watchdog, and where no
+  // checksum verified the file, a crash inside the reader (a damaged per-atom record) reported
+  // as an error instead of a bare signal
+  const bool watch = timeout > 0.0, guard = status == 3;
+  if (watch || guard) {
+    // the handlers end the process without flushing: what is buffered goes out now
     watchdog_fd[0] = watchdog_fd[1] = -1;
     if (comm->me == 0) {
       if (screen) {
@@ -184,15 +200,32 @@ void SaltdemReadRestart::command(int narg, char **arg)
         watchdog_fd[1] = fileno(logfile);
       }
     }
-    memset(&act, 0, sizeof(act));
+  }
+  struct sigaction act, old_alarm, old_crash[3];
+  memset(&act, 0, sizeof(act));
+  sigemptyset(&act.sa_mask);
+  if (watch) {
+    set_message(watchdog_message, watchdog_length,
+                fmt::format("ERROR: saltdem/read_restart: reading {} did not finish within {:.0f} "
+                            "s: the file is damaged; {}\n",
+                            file, timeout, hint));
     act.sa_handler = watchdog_expired;
-    sigemptyset(&act.sa_mask);
-    sigaction(SIGALRM, &act, &old);
+    sigaction(SIGALRM, &act, &old_alarm);
     alarm((unsigned int) (timeout + 0.999));
   }
-  input->one("read_restart " + file);
-  if (timeout > 0.0) {
-    alarm(0);
-    sigaction(SIGALRM, &old, nullptr);
+  if (guard) {
+    set_message(crash_message, crash_length,
+                fmt::format("ERROR: saltdem/read_restart: reading {} crashed in LAMMPS's reader: "
+                            "the file (not verified, no checksum file) is damaged; {}\n",
+                            file, hint));
+    act.sa_handler = read_crashed;
+    for (int k = 0; k < 3; k++) sigaction(CRASH_SIGNALS[k], &act, &old_crash[k]);
   }
+  input->one("read_restart " + file);
+  if (watch) {
+    alarm(0);
+    sigaction(SIGALRM, &old_alarm, nullptr);
+  }
+  if (guard)
+    for (int k = 0; k < 3; k++) sigaction(CRASH_SIGNALS[k], &old_crash[k], nullptr);
 }

@@ -127,12 +127,24 @@ RUNS_PAGE = "gallery/runs.md"    # the companion page, relative to the gallery p
 MARKS = (("\u2713", "agree"), ("~", "in part"), ("\u2717", "do not"))    # a note's leading mark
 
 
+def leading_marks(said: Sequence[str], mine: Sequence[str]) -> List[Optional[str]]:
+    """The verdict on each of the paper's statements: the leading mark (\u2713, ~ or \u2717) of
+    the note line with the statement's index, None where that line is missing or has no mark
+    (a remark); lines beyond the statements are remarks."""
+    out: List[Optional[str]] = []
+    for k in range(len(said)):
+        line = mine[k] if k < len(mine) else ""
+        out.append(next((mark for mark, _ in MARKS if line.startswith(mark)), None))
+    return out
+
+
 def verdict(said: Sequence[str], mine: Sequence[str]) -> str:
     """How the run's reading answers the paper's statements, counted by each note's leading
     mark (\u2713 agrees, ~ in part, \u2717 does not)."""
     if not said:
         return ""
-    counts = [(sum(1 for m in mine[:len(said)] if m.startswith(mark)), word) for mark, word in MARKS]
+    marks = leading_marks(said, mine)
+    counts = [(marks.count(mark), word) for mark, word in MARKS]
     parts = [f"{n} {word}" for n, word in counts if n]
     missing = len(said) - min(len(mine), len(said))
     if missing:

@@ -7,7 +7,7 @@
                                        --tol (default 1e-10), velocities below --vtol m/s
 
 The checks: bench/regression/trajectory.in with the cohesive law (cohesion, tension, rolling, sliding),
-the fluid law and the contact law of saltdem/viscous (500 steps each on a dense pack made once
+the fluid law (Newtonian and frictional-viscous) and the contact law of saltdem/viscous (500 steps each on a dense pack made once
 by tools/pack.in), and the Expt 1 benchmark scene (bench/performance/bench_scene.in, hybrid of both styles,
 a moving hanging wall) on one thread and with the OpenMP styles on two.  Every run is serial
 in MPI terms and deterministic, so an optimisation that only drops exact zeros reproduces the
@@ -29,6 +29,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 CHECKS = {
     "cohesive": dict(deck="bench/regression/trajectory.in", vars=dict(law="cohesive"), dump="traj_cohesive.dump"),
     "fluid": dict(deck="bench/regression/trajectory.in", vars=dict(law="fluid"), dump="traj_fluid.dump"),
+    "plastic": dict(deck="bench/regression/trajectory.in", vars=dict(law="plastic"), dump="traj_plastic.dump"),
     "contact": dict(deck="bench/regression/trajectory.in", vars=dict(law="contact"), dump="traj_contact.dump"),
     "scene": dict(deck="bench/performance/bench_scene.in", dump="bench_final.dump",
                   vars=dict(strip=500, ncopy=2, nlayer=5, nsettle=300, nwarm=0, nsteps=500,

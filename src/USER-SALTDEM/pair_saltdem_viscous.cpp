@@ -33,6 +33,7 @@
 #include "saltdem_pair_loop.h"
 #include "saltdem_plastic.h"
 #include "saltdem_sph_fields.h"
+#include "saltdem_viscous_args.h"
 #include "saltdem_viscous_law.h"
 #include "saltdem_viscous_substeps.h"
 
@@ -140,84 +141,41 @@ double PairSaltdemViscous::fluid_K(int t) const
 }
 
 /* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C]
-   [fill F] [substeps N] [noslip centre|surface] */
+   [fill F] [substeps N] [noslip centre|surface] (saltdem_viscous_args.cpp) */
 
 void PairSaltdemViscous::settings(int narg, char **arg)
 {
-  int iarg = 0;
-  while (iarg < narg) {
-    if (iarg + 2 > narg)
-      utils::missing_cmd_args(FLERR, fmt::format("pair_style {} {}", name, arg[iarg]), error);
-    if (strcmp(arg[iarg], "substeps") == 0) {
-      substeps = parse_substeps(arg[iarg + 1]);
-      iarg += 2;
-      continue;
-    }
-    if (strcmp(arg[iarg], "noslip") == 0) {
-      if (strcmp(arg[iarg + 1], "surface") == 0)
-        noslip_surface = true;
-      else if (strcmp(arg[iarg + 1], "centre") == 0 || strcmp(arg[iarg + 1], "center") == 0)
-        noslip_surface = false;
-      else
-        error->all(FLERR,
-                   "Pair style {}: noslip '{}' is not a boundary (expected surface: the fluid "
-                   "meets a boundary disc at its surface, or centre: at its centre)",
-                   name, arg[iarg + 1]);
-      iarg += 2;
-      continue;
-    }
-    const double v = SaltDEM::numeric(FLERR, arg[iarg + 1],
-                                      fmt::format("Pair style {}: {}", name, arg[iarg]), lmp);
-    if (strcmp(arg[iarg], "correction") == 0) {
-      if (v <= 0.0) error->all(FLERR, "Pair style {}: correction {} must be > 0", name, v);
-      correction = v;
-    } else if (strcmp(arg[iarg], "calibration") == 0) {
-      if (v <= 0.0) error->all(FLERR, "Pair style {}: calibration {} must be > 0", name, v);
-      calibration = v;
-    } else if (strcmp(arg[iarg], "dtfactor") == 0) {
-      if (v <= 0.0 || v > DTFACTOR_MAX)
-        error->all(FLERR, "Pair style {}: dtfactor {} must be in (0, {}]", name, v, DTFACTOR_MAX);
-      dtfactor = v;
-    } else if (strcmp(arg[iarg], "viscfactor") == 0) {
-      if (v <= 0.0 || v > 1.0)
-        error->all(FLERR, "Pair style {}: viscfactor {} must be in (0, 1]", name, v);
-      viscfactor = v;
-    } else if (strcmp(arg[iarg], "fill") == 0) {
-      if (v < 1.0 || v > 100.0)
-        error->all(FLERR,
-                   "Pair style {}: fill {} must be in [1, 100] (the most a boundary particle "
-                   "stands for, in its own volumes; 1: none)",
-                   name, v);
-      fill_max = v;
-    } else
-      error->all(FLERR,
-                 "Pair style {}: unknown keyword '{}' (expected: correction, calibration, "
-                 "dtfactor, viscfactor, fill, substeps, noslip)",
-                 name, arg[iarg]);
-    iarg += 2;
-  }
+  SaltDEM::ViscousSettings st = settings_now();
+  SaltDEM::parse_viscous_settings(lmp, name, narg, arg, st, DTFACTOR_MAX, MAX_SUBSTEPS);
+  set_settings(st);
 }
 
-int PairSaltdemViscous::parse_substeps(const char *str)
+SaltDEM::ViscousSettings PairSaltdemViscous::settings_now() const
 {
-  const int n = utils::inumeric(FLERR, str, false, lmp);
-  if (n < 1 || n > MAX_SUBSTEPS)
-    error->all(FLERR,
-               "Pair style {}: substeps {} must be in [1, {}] (1: the viscosity in the force pass)",
-               name, n, MAX_SUBSTEPS);
-  return n;
+  return {correction, calibration, dtfactor, viscfactor, fill_max, substeps, noslip_surface};
+}
+
+void PairSaltdemViscous::set_settings(const SaltDEM::ViscousSettings &st)
+{
+  correction = st.correction;
+  calibration = st.calibration;
+  dtfactor = st.dtfactor;
+  viscfactor = st.viscfactor;
+  fill_max = st.fill_max;
+  substeps = st.substeps;
+  noslip_surface = st.noslip_surface;
 }
 
 /* saltdem/timestep F substeps N: the sub-steps of a style read from a restart file too */
 
 bool PairSaltdemViscous::set_substeps(int n)
 {
-  substeps = parse_substeps(std::to_string(n).c_str());
+  substeps = SaltDEM::parse_viscous_substeps(lmp, name, std::to_string(n).c_str(), MAX_SUBSTEPS);
   return true;
 }
 
-/* pair_coeff I J eta kn fluid h
-   pair_coeff I J eta kn contact gap [tangential ratio] */
+/* pair_coeff I J eta kn fluid h K [yield MU C] [modulus G]
+   pair_coeff I J eta kn contact gap [tangential ratio] (saltdem_viscous_args.cpp) */
 
 void PairSaltdemViscous::coeff(int narg, char **arg)
 {
@@ -225,98 +183,13 @@ void PairSaltdemViscous::coeff(int narg, char **arg)
                       "pair_coeff I J eta kn contact gap [tangential R]";
   int ilo, ihi, jlo, jhi;
   check_types(narg, arg, 6, usage, ilo, ihi, jlo, jhi);
-
-  SaltDEM::ViscousParams p{};
-  auto value = [&](const char *str, const char *what) {
-    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style {}: {}", name, what), lmp);
-  };
-  const double eta_given = value(arg[2], "eta");
-  p.kn = value(arg[3], "kn");
-  if (eta_given <= 0.0) error->all(FLERR, "Pair style {}: eta = {} must be > 0", name, eta_given);
-  if (p.kn < 0.0) error->all(FLERR, "Pair style {}: kn = {} must be >= 0", name, p.kn);
-  p.ratio = 1.0;
-
-  std::string kw = arg[4];
-  if (kw == "fluid") {
-    p.mode = SaltDEM::VISCOUS_FLUID;
-    p.h = value(arg[5], "fluid h");
-    if (p.h <= 0.0) error->all(FLERR, "Pair style {}: fluid h = {} must be > 0", name, p.h);
-    if (narg < 7)
-      error->all(FLERR, "Pair style {}: 'fluid' takes h and K, got {} values; usage: {}", name,
-                 narg - 5, usage);
-    p.K = value(arg[6], "fluid K");
-    if (p.K < 0.0) error->all(FLERR, "Pair style {}: fluid K = {} must be >= 0", name, p.K);
-    parse_plastic(narg - 7, arg + 7, p, usage);
-  } else if (kw == "contact") {
-    p.mode = SaltDEM::VISCOUS_CONTACT;
-    if (p.kn <= 0.0)
-      error->all(FLERR,
-                 "Pair style {}: contact kn = {} must be > 0 (a boundary needs its elastic "
-                 "repulsion)",
-                 name, p.kn);
-    p.gap = value(arg[5], "contact gap");
-    if (p.gap < 0.0) error->all(FLERR, "Pair style {}: contact gap = {} must be >= 0", name, p.gap);
-    if (narg == 8 && strcmp(arg[6], "tangential") == 0) {
-      p.ratio = value(arg[7], "tangential ratio");
-      if (p.ratio < 0.0)
-        error->all(FLERR, "Pair style {}: tangential ratio = {} must be >= 0", name, p.ratio);
-    } else if (narg != 6)
-      error->all(FLERR,
-                 "Pair style {}: unexpected arguments after 'contact {}' (allowed: "
-                 "tangential R); usage: {}",
-                 name, arg[5], usage);
-  } else
-    error->all(FLERR, "Pair style {}: unknown law '{}' (expected fluid or contact); usage: {}",
-               name, kw, usage);
-
+  double eta_given = 0.0;
+  const SaltDEM::ViscousParams p =
+      SaltDEM::parse_viscous_coeff(lmp, name, narg, arg, usage, eta_given);
   assign_coeffs(ilo, ihi, jlo, jhi, [&](int i, int j) {
     params[i][j] = p;
     eta[i][j] = eta_given;
   });
-}
-
-/* fluid ... [yield MU C] [modulus G]: the frictional-viscous fluid's strength C + MU P and the
-   shear modulus of its plastic stress (default K: the stable step then follows a sound speed
-   with K + 4G/3, 1.5x faster than K's alone) */
-
-void PairSaltdemViscous::parse_plastic(int narg, char **arg, SaltDEM::ViscousParams &p,
-                                       const char *usage)
-{
-  auto value = [&](const char *str, const char *what) {
-    return SaltDEM::numeric(FLERR, str, fmt::format("Pair style {}: {}", name, what), lmp);
-  };
-  bool modulus = false;
-  for (int k = 0; k < narg;) {
-    if (strcmp(arg[k], "yield") == 0 && k + 3 <= narg) {
-      p.mu_y = value(arg[k + 1], "yield MU");
-      p.coh_y = value(arg[k + 2], "yield C");
-      if (p.mu_y < 0.0 || p.coh_y < 0.0)
-        error->all(FLERR, "Pair style {}: yield MU = {} and C = {} must be >= 0", name, p.mu_y,
-                   p.coh_y);
-      k += 3;
-    } else if (strcmp(arg[k], "modulus") == 0 && k + 2 <= narg) {
-      p.G = value(arg[k + 1], "modulus G");
-      if (!(p.G > 0.0)) error->all(FLERR, "Pair style {}: modulus G = {} must be > 0", name, p.G);
-      modulus = true;
-      k += 2;
-    } else
-      error->all(FLERR,
-                 "Pair style {}: unexpected or incomplete '{}' after 'fluid h K' (allowed: yield "
-                 "MU C, modulus G); usage: {}",
-                 name, arg[k], usage);
-  }
-  const bool yield = p.mu_y > 0.0 || p.coh_y > 0.0;
-  if (modulus && !yield)
-    error->all(FLERR,
-               "Pair style {}: modulus G is the elastic part of a plastic strength: give yield "
-               "MU C with MU or C > 0 too",
-               name);
-  if (yield && !(p.K > 0.0))
-    error->all(FLERR,
-               "Pair style {}: yield needs a fluid that carries pressure (K > 0, got {}): its "
-               "strength C + MU P and its stress act through the pressure matrices",
-               name, p.K);
-  if (yield && !modulus) p.G = p.K;
 }
 
 /* the internal fix of style STYLE, created here (see the header) */
@@ -719,72 +592,38 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
 
 /* ---------------------------------------------------------------------- */
 
-/* the restart fields: the settings, and per type pair the law, the viscosity and the
-   coefficients given (the dashpots cw, ih2, kfac, gn, gt are derived) */
+/* the restart fields (saltdem_viscous_args.cpp), of the layout being read where one is */
 
 std::vector<std::string> PairSaltdemViscous::setting_names() const
 {
-  // (the settings of the layout being read: 1 before fill and substeps, 3 before noslip)
-  if (layout_read == 1) return {"calibration", "correction", "dtfactor", "viscfactor"};
-  if (layout_read == 3)
-    return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps"};
-  return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps", "noslip"};
+  return SaltDEM::viscous_setting_names(layout_read);
 }
 
 void PairSaltdemViscous::pack_settings(double *v) const
 {
-  v[0] = calibration;
-  v[1] = correction;
-  v[2] = dtfactor;
-  v[3] = viscfactor;
-  v[4] = fill_max;
-  v[5] = substeps;
-  v[6] = noslip_surface ? 1.0 : 0.0;
+  SaltDEM::pack_viscous_settings(settings_now(), v);
 }
 
 void PairSaltdemViscous::unpack_settings(const double *v)
 {
-  calibration = v[0];
-  correction = v[1];
-  dtfactor = v[2];
-  viscfactor = v[3];
-  fill_max = (layout_read == 1) ? DEFAULT_FILL_MAX : v[4];
-  substeps = (layout_read == 1) ? 1 : (int) v[5];
-  noslip_surface = (layout_read >= 4) && v[6] != 0.0;
+  SaltDEM::ViscousSettings st = settings_now();
+  SaltDEM::unpack_viscous_settings(v, layout_read, DEFAULT_FILL_MAX, st);
+  set_settings(st);
 }
 
 std::vector<std::string> PairSaltdemViscous::coeff_names() const
 {
-  // (the coefficients of the layout being read: the plastic strength came with 5)
-  if (layout_read > 0 && layout_read < 5)
-    return {"law", "eta", "kn", "h", "K", "gap", "tangential"};
-  return {"law", "eta", "kn", "h", "K", "gap", "tangential", "yield_mu", "yield_c", "modulus"};
+  return SaltDEM::viscous_coeff_names(layout_read);    // (of the layout being read)
 }
 
 void PairSaltdemViscous::pack_coeffs(int i, int j, double *v) const
 {
-  const auto &p = params[i][j];
-  const double f[] = {(double) p.mode, eta[i][j], p.kn,   p.h,     p.K,
-                      p.gap,           p.ratio,   p.mu_y, p.coh_y, p.G};
-  for (int k = 0; k < 10; k++) v[k] = f[k];
+  SaltDEM::pack_viscous_coeff(params[i][j], eta[i][j], v);
 }
 
 void PairSaltdemViscous::unpack_coeffs(int i, int j, const double *v)
 {
-  SaltDEM::ViscousParams p{};
-  p.mode = (v[0] == SaltDEM::VISCOUS_CONTACT) ? SaltDEM::VISCOUS_CONTACT : SaltDEM::VISCOUS_FLUID;
-  eta[i][j] = v[1];
-  p.kn = v[2];
-  p.h = v[3];
-  p.K = v[4];
-  p.gap = v[5];
-  p.ratio = v[6];
-  if (ncoeff_read >= 10) {
-    p.mu_y = v[7];
-    p.coh_y = v[8];
-    p.G = v[9];
-  }
-  params[i][j] = p;
+  SaltDEM::unpack_viscous_coeff(v, ncoeff_read, params[i][j], eta[i][j]);
 }
 
 /* the inertia factor S of the viscous discs: the largest of the integrated atoms of the types

@@ -31,6 +31,7 @@ namespace LAMMPS_NS {
 namespace SaltDEM {
   struct ViscousParams;
   struct ViscousLaw;
+  struct ViscousSettings;
   struct SphInput;
   class SphFields;
 }    // namespace SaltDEM
@@ -110,9 +111,9 @@ class PairSaltdemViscous : public PairSaltdem {
   enum { COMM_PRESSURE, COMM_SUBSTEP };
   int comm_mode;
 
+  SaltDEM::ViscousSettings settings_now() const;    // the settings, as one value
+  void set_settings(const SaltDEM::ViscousSettings &);
   SaltDEM::ViscousLaw law() const;    // the law policy of the shared pair loop
-  int parse_substeps(const char *);
-  void parse_plastic(int narg, char **arg, SaltDEM::ViscousParams &p, const char *usage);
   // the internal fix of style STYLE that keeps some of this style's state (its ID: STYLE, or
   // STYLE_N for the N-th saltdem/viscous sub-style of pair hybrid; the same for the same deck
   // after read_restart, so that it finds its data in a restart file)

@@ -222,7 +222,8 @@ def _outcome_options(args):
         min_discs=args.min_band_discs, min_dip=args.min_dip, max_flank_fraction=args.max_flank_fraction,
         wall_margin=args.wall_margin, tip_tolerance=args.tip_tolerance, marker_window=args.marker_window,
         bin_width=args.bin_width, weld_thickness=args.weld_thickness, gap=args.gap, flow_min=args.flow_min,
-        collapse_drop=args.collapse_drop, deformed_fraction=args.deformed_fraction)
+        collapse_drop=args.collapse_drop, deformed_fraction=args.deformed_fraction,
+        deformed_basal=args.deformed_basal)
 
 
 def _say_outcome(r: dict) -> None:
@@ -396,6 +397,9 @@ def _parser() -> argparse.ArgumentParser:
     g.add_argument("--deformed-fraction", type=float, default=0.1,
                    help="keystone: a column is deformed when this fraction of its cover is strong "
                         "(default %(default)s)")
+    g.add_argument("--deformed-basal", type=float, default=3.0,
+                   help="keystone: the cover within this many disc diameters of a column's base does not "
+                        "count: a raft shears there in every column (default %(default)s)")
     s.add_argument("--title", help="heading of outcomes.md")
 
     s = sub.add_parser("compare", help="runs side by side against the paper's statements, per stage",

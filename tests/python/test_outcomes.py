@@ -156,6 +156,25 @@ def test_keystone_graben_two_synthetic_faults():
     assert [g["region"] for g in r["salt_flow"]["regions"]] == ["left block", "graben", "right block"]
 
 
+def test_keystone_raft_sheared_at_its_base_is_not_deformed():
+    """A cover that slides right as one raft over the salt, sheared only in its lowest discs,
+    is not a deformed cover on either side of the graben (the basal shear is in every column);
+    counting those discs reads the whole half-section as deformed."""
+    ref = reference_scene(SPEC)
+    cover = ref["type"] == COVER
+    z = ref.y[cover] - SPEC.salt_thickness
+    d = median_cover_diameter(ref)
+    ux = 200.0 + 40.0 * np.clip(z / (2.0 * d), 0.0, 1.0)    # the lowest two discs shear, the rest glides
+    cur = displaced(ref, cover, np.column_stack([ux, np.zeros(cover.sum())]))
+    r = outcomes_of(cur, ref, scene="keystone", fault_x=[1210.0, 1790.0])
+    assert r["faults"]["detection"]["incremental"]["n_strong"] > 0    # the basal shear is strong
+    for side in ("left", "right"):
+        assert r["keystone"][side]["width_m"] == 0.0
+    # control: counting every disc reads the whole half-section as deformed
+    r0 = outcomes_of(cur, ref, scene="keystone", fault_x=[1210.0, 1790.0], deformed_basal=0.0)
+    assert r0["keystone"]["left"]["width_m"] > 0.8 * 1210.0
+
+
 # ------------------------------------------------------------ salt
 
 def thinned(ref, x0, x1, keep_below):

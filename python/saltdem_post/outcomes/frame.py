@@ -81,7 +81,8 @@ def frame_outcomes(frame: Frame, first: Frame, previous: Optional[Frame], materi
     if opts.scene == "keystone":
         inc = detected.get("incremental")
         result["keystone"] = (deformed_widths(fields["incremental"], _strong_of(fields["incremental"], inc[1]),
-                                              cols, tips, opts.deformed_fraction) if inc else None)
+                                              cols, tips, opts.deformed_fraction, opts.deformed_basal * L.d)
+                              if inc else None)
     if opts.scene == "tilted":
         result["tilted"] = tilted_outcome(bands, faults, first, frame, materials, opts, L)
     return result

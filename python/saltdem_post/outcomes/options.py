@@ -47,6 +47,7 @@ class OutcomeOptions:
     # walls and scene-specific
     collapse_drop: Optional[float] = None    # [2 d] edge subsidence (relative to the wall) that is a collapse
     deformed_fraction: float = 0.1           # keystone: a column is deformed when this fraction is strong
+    deformed_basal: float = 3.0              # keystone: ... above its lowest this many disc diameters
 
     def __post_init__(self):
         if self.scene not in SCENES:

@@ -18,12 +18,20 @@ from .options import Lengths
 
 
 def deformed_widths(field: StrainField, strong: np.ndarray, cols: Columns, tips: Sequence[BasementTip],
-                    fraction: float) -> dict:
+                    fraction: float, basal_m: float = 0.0) -> dict:
     """Keystone: width of the deformed cover (columns where at least
     ``fraction`` of the cover discs are strong in the incremental strain)
-    left of the left tip and right of the right tip."""
-    k = cols.index(field.cur_xy[:, 0])
+    left of the left tip and right of the right tip.  The discs within
+    ``basal_m`` of a column's lowest cover disc do not count: a cover that
+    slides over the salt as a raft shears there in every column, which would
+    make the whole half-section read as deformed."""
+    x, y = field.cur_xy[:, 0], field.cur_xy[:, 1]
+    k = cols.index(x)
     ok = k >= 0
+    if basal_m > 0.0 and ok.any():
+        base = np.full(len(cols.x), np.inf)
+        np.minimum.at(base, k[ok], y[ok])
+        ok &= y > base[np.maximum(k, 0)] + basal_m
     n = np.bincount(k[ok], minlength=len(cols.x))
     n_strong = np.bincount(k[ok], strong[ok].astype(float), minlength=len(cols.x))
     deformed = (n > 0) & (n_strong >= fraction * np.maximum(n, 1))

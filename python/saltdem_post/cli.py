@@ -223,7 +223,7 @@ def _outcome_options(args):
         wall_margin=args.wall_margin, tip_tolerance=args.tip_tolerance, marker_window=args.marker_window,
         bin_width=args.bin_width, weld_thickness=args.weld_thickness, gap=args.gap, flow_min=args.flow_min,
         collapse_drop=args.collapse_drop, deformed_fraction=args.deformed_fraction,
-        deformed_basal=args.deformed_basal)
+        deformed_basal=args.deformed_basal, deformed_gap=args.deformed_gap)
 
 
 def _say_outcome(r: dict) -> None:
@@ -400,6 +400,9 @@ def _parser() -> argparse.ArgumentParser:
     g.add_argument("--deformed-basal", type=float, default=3.0,
                    help="keystone: the cover within this many disc diameters of a column's base does not "
                         "count: a raft shears there in every column (default %(default)s)")
+    g.add_argument("--deformed-gap", type=float, default=3.0,
+                   help="keystone: the deformed zone from the graben spans gaps of undeformed cover up to this "
+                        "many disc diameters (default %(default)s)")
     s.add_argument("--title", help="heading of outcomes.md")
 
     s = sub.add_parser("compare", help="runs side by side against the paper's statements, per stage",

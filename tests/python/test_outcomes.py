@@ -159,20 +159,35 @@ def test_keystone_graben_two_synthetic_faults():
 def test_keystone_raft_sheared_at_its_base_is_not_deformed():
     """A cover that slides right as one raft over the salt, sheared only in its lowest discs,
     is not a deformed cover on either side of the graben (the basal shear is in every column);
-    counting those discs reads the whole half-section as deformed."""
-    ref = reference_scene(SPEC)
+    counting those discs reads the whole half-section as deformed.  A zone of strain far from
+    the graben (as at a moving end wall) counts in its side's width, not in the extent of the
+    zone that starts at the graben."""
+    spec = SceneSpec(width=6000.0, salt_thickness=300.0, cover_thickness=720.0, r_max=15.0)
+    ref = reference_scene(spec)
     cover = ref["type"] == COVER
-    z = ref.y[cover] - SPEC.salt_thickness
+    z = ref.y[cover] - spec.salt_thickness
     d = median_cover_diameter(ref)
     ux = 200.0 + 40.0 * np.clip(z / (2.0 * d), 0.0, 1.0)    # the lowest two discs shear, the rest glides
     cur = displaced(ref, cover, np.column_stack([ux, np.zeros(cover.sum())]))
-    r = outcomes_of(cur, ref, scene="keystone", fault_x=[1210.0, 1790.0])
+    tips = [1210.0, 1790.0]
+    r = outcomes_of(cur, ref, scene="keystone", fault_x=tips)
     assert r["faults"]["detection"]["incremental"]["n_strong"] > 0    # the basal shear is strong
     for side in ("left", "right"):
-        assert r["keystone"][side]["width_m"] == 0.0
-    # control: counting every disc reads the whole half-section as deformed
-    r0 = outcomes_of(cur, ref, scene="keystone", fault_x=[1210.0, 1790.0], deformed_basal=0.0)
+        assert r["keystone"][side]["width_m"] == 0.0 and r["keystone"][side]["extent_m"] == 0.0
+    end = cover & (ref.x > spec.width - 300.0)
+    sheared = displaced(cur, end, np.column_stack([np.zeros(end.sum()),
+                                                   -0.5 * (ref.x[end] - (spec.width - 300.0))]))
+    r2 = outcomes_of(sheared, ref, scene="keystone", fault_x=tips)
+    assert r2["keystone"]["right"]["width_m"] > 0.0
+    assert r2["keystone"]["right"]["extent_m"] == 0.0
+    # controls: counting every disc reads the whole half-section as deformed; a zone that starts
+    # at the graben counts in the extent
+    r0 = outcomes_of(cur, ref, scene="keystone", fault_x=tips, deformed_basal=0.0)
     assert r0["keystone"]["left"]["width_m"] > 0.8 * 1210.0
+    near = cover & (ref.x > 1900.0) & (ref.x < 2200.0)
+    r3 = outcomes_of(displaced(cur, near, np.column_stack([np.zeros(near.sum()), -0.5 * (ref.x[near] - 1900.0)])),
+                     ref, scene="keystone", fault_x=tips)
+    assert 2200.0 - 1790.0 <= r3["keystone"]["right"]["extent_m"] < 1000.0    # (strain smears past 2200)
 
 
 # ------------------------------------------------------------ salt

@@ -81,7 +81,8 @@ def frame_outcomes(frame: Frame, first: Frame, previous: Optional[Frame], materi
     if opts.scene == "keystone":
         inc = detected.get("incremental")
         result["keystone"] = (deformed_widths(fields["incremental"], _strong_of(fields["incremental"], inc[1]),
-                                              cols, tips, opts.deformed_fraction, opts.deformed_basal * L.d)
+                                              cols, tips, opts.deformed_fraction, opts.deformed_basal * L.d,
+                                              opts.deformed_gap * L.d)
                               if inc else None)
     if opts.scene == "tilted":
         result["tilted"] = tilted_outcome(bands, faults, first, frame, materials, opts, L)

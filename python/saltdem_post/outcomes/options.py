@@ -48,6 +48,7 @@ class OutcomeOptions:
     collapse_drop: Optional[float] = None    # [2 d] edge subsidence (relative to the wall) that is a collapse
     deformed_fraction: float = 0.1           # keystone: a column is deformed when this fraction is strong
     deformed_basal: float = 3.0              # keystone: ... above its lowest this many disc diameters
+    deformed_gap: float = 3.0                # keystone: the zone from the graben, gaps of at most this many d
 
     def __post_init__(self):
         if self.scene not in SCENES:

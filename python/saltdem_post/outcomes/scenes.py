@@ -18,13 +18,18 @@ from .options import Lengths
 
 
 def deformed_widths(field: StrainField, strong: np.ndarray, cols: Columns, tips: Sequence[BasementTip],
-                    fraction: float, basal_m: float = 0.0) -> dict:
-    """Keystone: width of the deformed cover (columns where at least
-    ``fraction`` of the cover discs are strong in the incremental strain)
-    left of the left tip and right of the right tip.  The discs within
-    ``basal_m`` of a column's lowest cover disc do not count: a cover that
-    slides over the salt as a raft shears there in every column, which would
-    make the whole half-section read as deformed."""
+                    fraction: float, basal_m: float = 0.0, gap_m: float = np.inf) -> dict:
+    """Keystone: the deformed cover (columns where at least ``fraction`` of
+    the cover discs are strong in the incremental strain) left of the left
+    tip and right of the right tip.  ``width_m``: the total width of such
+    columns on that side.  ``extent_m``: how far from the tip the zone that
+    starts at the graben reaches: its first column within twice the cover's
+    thickness of the tip (a fault rising from the tip at 45° or steeper
+    through salt no thicker than the cover), then deformed columns with at
+    most ``gap_m`` of undeformed cover between them; a deformed column beyond
+    a wider gap (the cover at a moving end wall) is not part of it.  The
+    discs within ``basal_m`` of a column's lowest cover disc do not count: a
+    cover that slides over the salt as a raft shears there in every column."""
     x, y = field.cur_xy[:, 0], field.cur_xy[:, 1]
     k = cols.index(x)
     ok = k >= 0
@@ -35,12 +40,18 @@ def deformed_widths(field: StrainField, strong: np.ndarray, cols: Columns, tips:
     n = np.bincount(k[ok], minlength=len(cols.x))
     n_strong = np.bincount(k[ok], strong[ok].astype(float), minlength=len(cols.x))
     deformed = (n > 0) & (n_strong >= fraction * np.maximum(n, 1))
+    start = 2.0 * float(np.ptp(y)) if len(y) else 0.0
     left, right = tips[0].x, tips[-1].x
     out = {}
     for side, sel, dist in (("left", cols.x < left, left - cols.x), ("right", cols.x > right, cols.x - right)):
-        hit = deformed & sel
-        out[side] = {"width_m": float(hit.sum() * cols.width),
-                     "extent_m": float(dist[hit].max() + 0.5 * cols.width) if hit.any() else 0.0}
+        hit = np.sort(dist[deformed & sel])    # outwards from the tip
+        reach = None
+        for dd in hit:
+            if (reach is None and dd > start) or (reach is not None and dd - reach > gap_m + cols.width):
+                break
+            reach = dd
+        out[side] = {"width_m": float(len(hit) * cols.width),
+                     "extent_m": float(reach + 0.5 * cols.width) if reach is not None else 0.0}
     out["graben_width_at_base_m"] = right - left
     return out
 

@@ -164,7 +164,8 @@ def scores_markdown(rows: Sequence[dict]) -> str:
                    f"has scored | {total_cells(2, 3)} |")
     out.append("")
     if len(scored) > 1:
-        names = ", ".join(scored[:-1]) + " and " + scored[-1]
+        heading = {s: h for s, _, h in SALTS}
+        names = ", ".join(heading[s] for s in scored[:-1]) + " and " + heading[scored[-1]]
         out += [f"The salts compare on the same statements in the last row: the {len(common)} that "
                 f"{names} all have a verdict for, those of {scene_list(common)}."
                 + (" A salt without runs is left out of it until its runs are read."

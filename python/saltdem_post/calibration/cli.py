@@ -260,7 +260,7 @@ def _parser() -> argparse.ArgumentParser:
 
     s = add("biaxial", [cover, bx, targets], "biaxial tests and the Mohr-Coulomb fit of one cover material")
     s.add_argument("--preset", choices=sorted(PRESETS), default="full",
-                   help="sample: full (scene radii), quick (radii x4), ci (small, two confinements)")
+                   help="sample: full (scene radii), medium (radii x2), quick (radii x4), ci (small, two confinements)")
     s.add_argument("--label", help="name of this set in the report (default: the preset)")
 
     s = add("repose", [cover], "angle of repose of the cover (dam-break heap)")

@@ -33,6 +33,8 @@ PAPER_RADII = (6.25, 15.625)
 PRESETS = {
     "full": dict(W=400.0, H=800.0, rmin=6.25, rmax=15.625, dist="paper", seeds=(11, 12, 13, 14, 15, 16),
                  confinements=(1e6, 2e6, 5e6, 10e6)),
+    "medium": dict(W=800.0, H=1600.0, rmin=12.5, rmax=31.25, dist="paper", seeds=(11, 12),
+                   confinements=(1e6, 2e6, 5e6, 10e6)),
     "quick": dict(W=1600.0, H=3200.0, rmin=25.0, rmax=62.5, dist="uniform", seeds=(11, 12),
                   confinements=(1e6, 2e6, 5e6, 10e6)),
     "ci": dict(W=400.0, H=800.0, rmin=6.25, rmax=15.625, dist="paper", seeds=(11, 12),

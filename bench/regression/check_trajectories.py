@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Check that a change to the SaltDEM pair styles leaves trajectories unchanged.
+"""Check that a change to the SaltDEM styles leaves trajectories unchanged.
 
   check_trajectories.py record DIR     run the checks, keep their final dumps in DIR
   check_trajectories.py compare DIR    run them again and compare with DIR: the largest
@@ -9,9 +9,11 @@
 The checks: bench/regression/trajectory.in with the cohesive law (cohesion, tension, rolling, sliding),
 the fluid law (Newtonian and frictional-viscous) and the contact law of saltdem/viscous (500 steps each on a dense pack made once
 by tools/pack.in), and the Expt 1 benchmark scene (bench/performance/bench_scene.in, hybrid of both styles,
-a moving hanging wall) on one thread and with the OpenMP styles on two.  Every run is serial
-in MPI terms and deterministic, so an optimisation that only drops exact zeros reproduces the
-dumps bit for bit; one that reorders arithmetic moves them by round-off.
+a moving hanging wall) on one thread and with the OpenMP styles on two, and fix saltdem/sediment
+(bench/regression/sediment.in: deposition at a rate and to a base level, erosion, settling, a
+restart in the middle, and the rate case on two MPI ranks).  Every run is deterministic, so an
+optimisation that only drops exact zeros reproduces the dumps bit for bit; one that reorders
+arithmetic moves them by round-off.
 
 From the repository root: PYTHONPATH=python /usr/bin/python3 bench/regression/check_trajectories.py ...
 """
@@ -37,6 +39,14 @@ CHECKS = {
     "scene-omp2": dict(deck="bench/performance/bench_scene.in", dump="bench_final.dump", omp=2,
                        vars=dict(strip=500, ncopy=2, nlayer=5, nsettle=300, nwarm=0, nsteps=500,
                                  styles="saltdem", dump=1)),
+    "sediment-rate": dict(deck="bench/regression/sediment.in", vars=dict(case="rate"),
+                          dump="sediment_rate.dump"),
+    "sediment-fill": dict(deck="bench/regression/sediment.in", vars=dict(case="fill"),
+                          dump="sediment_fill.dump"),
+    "sediment-restart": dict(deck="bench/regression/sediment.in", vars=dict(case="restart"),
+                             dump="sediment_restart.dump"),
+    "sediment-np2": dict(deck="bench/regression/sediment.in", vars=dict(case="rate"), np=2,
+                         dump="sediment_rate.dump"),
 }
 
 
@@ -68,6 +78,10 @@ def run_check(name, wd, cache):
         cmd += ["-var", k, str(v)]
     if c.get("omp"):
         cmd += ["-sf", "omp", "-pk", "omp", str(c["omp"])]
+    if c.get("np"):
+        mpirun = shutil.which("mpirun") or sys.exit("check_trajectories: mpirun not found")
+        root = ["--allow-run-as-root"] if os.geteuid() == 0 else []
+        cmd = [mpirun, *root, "--oversubscribe", "-np", str(c["np"]), *cmd]
     # the scene's packs are made once in the cache and found there
     for f in cache.glob("bench_*.data"):
         if not (wd / f.name).exists():

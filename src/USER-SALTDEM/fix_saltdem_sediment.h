@@ -35,6 +35,7 @@ namespace LAMMPS_NS {
 class FixSaltdemSediment : public Fix {
  public:
   FixSaltdemSediment(class LAMMPS *, int, char **);
+  ~FixSaltdemSediment() override;
   int setmask() override;
   void init() override;
   void setup(int) override;
@@ -45,28 +46,14 @@ class FixSaltdemSediment : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // a level: a constant, an equal-style variable, or (erosion only) an atom-style variable
-  struct Level {
-    enum { NONE, CONSTANT, EQUAL, ATOM };
-    int kind = NONE;
-    double value = 0.0;
-    std::string name;    // variable name (without v_)
-    int ivar = -1;
-  };
-
  private:
   enum { MODE_NONE, MODE_FILL, MODE_RATE };
   enum { DRIVE_STEPS, DRIVE_VARIABLE, DRIVE_FIX };
-  enum { DIST_UNIFORM, DIST_PAPER };
 
-  int mode;             // none (erosion only), fill (to the base level) or rate
-  double rate;          // rate mode: disc area per unit length and time (m^2 / (m s))
-  int ntype;            // type of the new discs
-  double rmin, rmax;    // radius law of the new discs
-  int dist;             // uniform, or the paper's power law p(r) ~ r^-Q on [rmin, rmax]
-  double density;       // mass per area of a new disc (2D: m = density pi r^2)
-  double tol;           // accepted overlap with an existing disc, fraction of the smaller radius
-  bigint maxper;        // most discs deposited in one interval
+  int mode;         // none (erosion only), fill (to the base level) or rate
+  double rate;      // rate mode: disc area per unit length and time (m^2 / (m s))
+  double length;    // rate mode: length the rate is given per (default: the window's)
+  int length_given;
 
   // interval: every nsteps steps, or every 'every' of drive displacement
   int drive_kind;
@@ -77,22 +64,12 @@ class FixSaltdemSediment : public Fix {
   int drive_ivar;
   class Fix *drive_fix;
 
-  Level base, erode;
   int erode_igroup, erode_groupbit;
-  std::vector<int> extra_groups;    // the new discs join these groups (and the fix group)
-  std::string epoch_name;           // per-atom integer (fix property/atom i_NAME) for the epoch
-  int epoch_index, epoch_offset;
-  int window_given;
-  Level wlo, whi;     // the window's ends: constants or equal-style variables (a front)
-  double xlo, xhi;    // deposition window along the 'along' axis (default: the box)
-  double foreset;     // outside the window the base level falls by this per unit length
-                      // (< 0: no deposit outside the window)
-  double length;      // rate mode: length the rate is given per (default xhi - xlo)
-  int length_given;
-  double up[2], along[2];    // frame of gravity: up = -g / |g|, along = (up_y, -up_x)
-  int settle_steps;          // damped settling of the new discs for this many steps ...
-  double settle_gamma;       // ... with a drag -gamma v (and -gamma r^2 omega)
-  uint64_t rng;              // state of the radius and tie generator (splitmix64)
+  std::string epoch_name;    // per-atom integer (fix property/atom i_NAME) for the epoch
+
+  class SaltdemSedimentLevels *levels;      // frame of gravity, base and erosion levels, window
+  class SaltdemSedimentDeposit *deposit;    // the new discs
+  class SaltdemSedimentSettle *settle;      // their damped settling
 
   // state, written to restart files
   int epoch;            // deposition intervals so far
@@ -107,11 +84,6 @@ class FixSaltdemSediment : public Fix {
   double last_level;            // base level at the last interval
   double last_n, last_area;     // deposited in the last interval
   double last_xlo, last_xhi;    // the window at the last interval
-  struct Settle {
-    tagint lo, hi;    // tags of the discs of one interval
-    bigint end;       // last step of their settling
-  };
-  std::vector<Settle> settles;
 
   // decided at the end of a step (or at setup): deposit at the next step
   int pending;
@@ -119,21 +91,11 @@ class FixSaltdemSediment : public Fix {
 
   std::string usage;
 
-  void parse_level(Level &, const char *, const char *kw);
-  void resolve_level(Level &, const char *kw);
-  double level_value(Level &, const char *kw);
-  void check_in_box(double level, const char *kw);
-  void parse_window_end(Level &, const char *text);
-  void update_window();
   double drive_value();
   void decide();
   bool has_cover_law(int itype);
   double now() const;
-  void erosion(const std::vector<double> &lev, double lconst);
   void deposition(double level, double time);
-  uint64_t next_random();
-  double uniform();
-  double draw_radius();
 };
 
 }    // namespace LAMMPS_NS

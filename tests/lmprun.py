@@ -3,6 +3,7 @@ import os
 import pathlib
 import re
 import shutil
+import subprocess
 
 import pytest
 
@@ -98,3 +99,20 @@ def assert_error(r, *words):
         assert w in line, f"'{w}' not in: {line}"
     return line
 
+
+def run_unit(name, tmp_path, sources=()):
+    """Compile tests/unit/NAME.cpp (with the package's headers and the package SOURCES it
+    needs, -Wall -Werror) and run it: it prints "ok" and exits 0, or FAIL lines and exits 1.
+    Skips without a C++ compiler."""
+    cxx = shutil.which("g++") or shutil.which("c++")
+    if cxx is None:
+        pytest.skip("no C++ compiler")
+    pkg = ROOT / "src" / "USER-SALTDEM"
+    exe = tmp_path / name
+    build = subprocess.run([cxx, "-std=c++17", "-O2", "-Wall", "-Werror", f"-I{pkg}",
+                            str(ROOT / "tests" / "unit" / f"{name}.cpp"),
+                            *[str(pkg / s) for s in sources], "-o", str(exe)],
+                           capture_output=True, text=True)
+    assert build.returncode == 0, build.stderr[-3000:]
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0 and run.stdout.strip() == "ok", run.stdout + run.stderr

@@ -17,16 +17,13 @@ strength C + MU P.
   errors      bad keywords and values
 """
 import re
-import shutil
-import subprocess
 
 import numpy as np
 import pytest
 
-from lmprun import ROOT, assert_error, check_ok, run_lmp
+from lmprun import ROOT, assert_error, check_ok, run_lmp, run_unit
 from saltdem_post.channel import ChannelFlow, read_params
 
-PKG = ROOT / "src" / "USER-SALTDEM"
 CHANNEL = (ROOT / "tests" / "decks" / "channel.in").read_text()
 PARAMS = ROOT / "potentials" / "salt_paper.params"
 PACK_IN = ROOT / "tools" / "pack.in"
@@ -40,17 +37,7 @@ SALT_PAPER = dict(mu=0.085, eta=8.8e8)    # the scenes' frictional-viscous salt 
 
 
 def test_plastic_math_alone(tmp_path):
-    cxx = shutil.which("g++") or shutil.which("c++")
-    if cxx is None:
-        pytest.skip("no C++ compiler")
-    exe = tmp_path / "plastic_test"
-    build = subprocess.run([cxx, "-std=c++17", "-O2", "-Wall", "-Werror", f"-I{PKG}",
-                            str(ROOT / "tests" / "unit" / "plastic_test.cpp"),
-                            str(PKG / "saltdem_sph_fields.cpp"), "-o", str(exe)],
-                           capture_output=True, text=True)
-    assert build.returncode == 0, build.stderr[-3000:]
-    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0 and run.stdout.strip() == "ok", run.stdout + run.stderr
+    run_unit("plastic_test", tmp_path, ["saltdem_sph_fields.cpp"])
 
 
 @pytest.fixture(scope="module")

@@ -17,17 +17,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "unit_check.h"
+
 using namespace LAMMPS_NS::SaltDEM;
-
-static int failures = 0;
-
-static void check(bool ok, const char *what, double got, double want)
-{
-  if (!ok) {
-    std::printf("FAIL %s: got %.17g, want %.17g\n", what, got, want);
-    failures++;
-  }
-}
 
 static bool close(double a, double b, double tol)
 {
@@ -179,7 +171,5 @@ int main()
 {
   simple_shear();
   lattice();
-  if (failures) return 1;
-  std::printf("ok\n");
-  return 0;
+  return report();
 }

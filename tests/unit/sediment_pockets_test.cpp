@@ -20,17 +20,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "unit_check.h"
+
 using namespace LAMMPS_NS::SaltDEM;
-
-static int failures = 0;
-
-static void check(bool ok, const char *what, double got, double want)
-{
-  if (!ok) {
-    std::printf("FAIL %s: got %.17g, want %.17g\n", what, got, want);
-    failures++;
-  }
-}
 
 static const double PI = 3.14159265358979323846;
 
@@ -279,7 +271,5 @@ int main()
   one_pocket();
   a_row();
   random_bed();
-  if (failures) return 1;
-  std::printf("ok\n");
-  return 0;
+  return report();
 }

@@ -9,17 +9,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "unit_check.h"
+
 using namespace LAMMPS_NS::SaltDEM;
-
-static int failures = 0;
-
-static void check(bool ok, const char *what, double got, double want)
-{
-  if (!ok) {
-    std::printf("FAIL %s: got %.17g, want %.17g\n", what, got, want);
-    failures++;
-  }
-}
 
 static bool close(double a, double b, double rel)
 {
@@ -116,7 +108,5 @@ int main()
   check(close(w.mi, m, 1e-15) && close(w.mj, m, 1e-15), "pair masses", w.mi, m);
   check(w.vi == F.vol[c] && w.vj == F.vol[c + 1], "pair volumes", w.vi, F.vol[c]);
 
-  if (failures) return 1;
-  std::printf("ok\n");
-  return 0;
+  return report();
 }

@@ -1,4 +1,4 @@
-"""fix saltdem/sediment: syn-tectonic sedimentation and erosion (issue 18 item 2).
+"""fix saltdem/sediment: syn-tectonic sedimentation and erosion.
 
 A settled bed of about 60 cover discs (radii 20-30 m) with a basin in the middle, between wall
 discs, made once per module; the decks below deposit into it.  "Frozen" decks integrate nothing

@@ -45,32 +45,28 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-char watchdog_message[1024];
-size_t watchdog_length = 0;
-int watchdog_fd[2] = {-1, -1};    // screen and log file
+// what the guards on the read print as they end the process (set before the read: a signal
+// handler may only write): the watchdog's on SIGALRM, the crash guard's on any other signal
+struct Message {
+  char text[1024];
+  size_t length;
+};
+Message watchdog_message, crash_message;
+int message_fd[2] = {-1, -1};    // screen and log file
 
-char crash_message[1024];
-size_t crash_length = 0;
-
-extern "C" void watchdog_expired(int)
+extern "C" void read_failed(int sig)
 {
   // only async-signal-safe calls here
-  for (int fd : watchdog_fd)
-    if (fd >= 0 && write(fd, watchdog_message, watchdog_length) < 0) break;
+  const Message &m = (sig == SIGALRM) ? watchdog_message : crash_message;
+  for (int fd : message_fd)
+    if (fd >= 0 && write(fd, m.text, m.length) < 0) break;
   _exit(1);
 }
 
-extern "C" void read_crashed(int)
+void set_message(Message &m, const std::string &msg)
 {
-  for (int fd : watchdog_fd)
-    if (fd >= 0 && write(fd, crash_message, crash_length) < 0) break;
-  _exit(1);
-}
-
-void set_message(char *buf, size_t &len, const std::string &msg)
-{
-  len = std::min(msg.size(), sizeof(watchdog_message));
-  memcpy(buf, msg.data(), len);
+  m.length = std::min(msg.size(), sizeof(m.text));
+  memcpy(m.text, msg.data(), m.length);
 }
 
 const int CRASH_SIGNALS[] = {SIGSEGV, SIGBUS, SIGFPE};
@@ -189,36 +185,35 @@ void SaltdemReadRestart::command(int narg, char **arg)
   const bool watch = timeout > 0.0, guard = status == 3;
   if (watch || guard) {
     // the handlers end the process without flushing: what is buffered goes out now
-    watchdog_fd[0] = watchdog_fd[1] = -1;
+    message_fd[0] = message_fd[1] = -1;
     if (comm->me == 0) {
       if (screen) {
         fflush(screen);
-        watchdog_fd[0] = fileno(screen);
+        message_fd[0] = fileno(screen);
       }
       if (logfile) {
         fflush(logfile);
-        watchdog_fd[1] = fileno(logfile);
+        message_fd[1] = fileno(logfile);
       }
     }
   }
   struct sigaction act, old_alarm, old_crash[3];
   memset(&act, 0, sizeof(act));
   sigemptyset(&act.sa_mask);
+  act.sa_handler = read_failed;
   if (watch) {
-    set_message(watchdog_message, watchdog_length,
+    set_message(watchdog_message,
                 fmt::format("ERROR: saltdem/read_restart: reading {} did not finish within {:.0f} "
                             "s: the file is damaged; {}\n",
                             file, timeout, hint));
-    act.sa_handler = watchdog_expired;
     sigaction(SIGALRM, &act, &old_alarm);
     alarm((unsigned int) (timeout + 0.999));
   }
   if (guard) {
-    set_message(crash_message, crash_length,
+    set_message(crash_message,
                 fmt::format("ERROR: saltdem/read_restart: reading {} crashed in LAMMPS's reader: "
                             "the file (not verified, no checksum file) is damaged; {}\n",
                             file, hint));
-    act.sa_handler = read_crashed;
     for (int k = 0; k < 3; k++) sigaction(CRASH_SIGNALS[k], &act, &old_crash[k]);
   }
   input->one("read_restart " + file);

@@ -26,7 +26,8 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
-sys.path[:0] = [p for p in (HERE, os.path.join(ROOT, "python")) if p not in sys.path]
+if HERE not in sys.path:    # (paper_statements finds the package itself)
+    sys.path.insert(0, HERE)
 
 from gallery_page import _cell, leading_marks, read_notes  # noqa: E402
 from paper_statements import STATEMENTS, scene_key  # noqa: E402

@@ -41,7 +41,7 @@ FixSaltdemFault::FixSaltdemFault(LAMMPS *lmp, int narg, char **arg) :
 
   // the hanging wall of a fault dipping toward +x (right) moves down and right
   const double a = dip * M_PI / 180.0;
-  blocks.push_back({-1, {sense * cos(a), -sin(a), 0.0}});
+  blocks.push_back(translation(-1, sense * cos(a), -sin(a)));
   size_vector = 3;
 }
 

@@ -47,8 +47,8 @@ FixSaltdemKeystone::FixSaltdemKeystone(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Fix {}: keystone GROUP is required; usage: {}", style, usage);
 
   const double a = dip * M_PI / 180.0;
-  blocks.push_back({ikeystone, {cos(a), -sin(a), 0.0}});
-  blocks.push_back({-1, {2.0 * cos(a), 0.0, 0.0}});
+  blocks.push_back(translation(ikeystone, cos(a), -sin(a)));
+  blocks.push_back(translation(-1, 2.0 * cos(a), 0.0));
   size_vector = 5;
 }
 

@@ -40,6 +40,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -58,30 +59,13 @@ FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
 
 void FixSaltdemMotion::parse(int narg, char **arg)
 {
-  for (int iarg = 3; iarg < narg; iarg += 2) {
-    if (iarg + 2 > narg)
-      utils::missing_cmd_args(FLERR, fmt::format("fix {} {}", style, arg[iarg]), error);
-    const std::string kw = arg[iarg], val = arg[iarg + 1];
-    if (kw == "rate")
-      rate = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: rate", style), lmp);
-    else if (kw == "target")
-      target = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: target", style), lmp);
-    else if (kw == "at_target") {
-      if (val == "stop")
-        end_run = 0;
-      else if (val == "end")
-        end_run = 1;
-      else
-        error->all(FLERR, "Fix {}: at_target '{}' must be stop or end", style, val);
-    } else if (kw == "toward" && has_toward) {
-      if (val == "right")
-        sense = 1;
-      else if (val == "left")
-        sense = -1;
-      else
-        error->all(FLERR, "Fix {}: toward '{}' must be right or left", style, val);
-    } else if (!parse_keyword(kw, val))
-      error->all(FLERR, "Fix {}: unknown keyword '{}'; usage: {}", style, kw, usage);
+  for (int iarg = 3; iarg < narg;) {
+    const int taken = (iarg + 1 < narg && parse_common(arg[iarg], arg[iarg + 1]))
+        ? 2
+        : parse_args(iarg, narg, arg);
+    if (taken == 0)
+      error->all(FLERR, "Fix {}: unknown keyword '{}'; usage: {}", style, arg[iarg], usage);
+    iarg += taken;
   }
   if (rate <= 0.0)
     error->all(FLERR, "Fix {}: rate = {} must be > 0 (m/s); usage: {}", style, rate, usage);
@@ -89,9 +73,56 @@ void FixSaltdemMotion::parse(int narg, char **arg)
     error->all(FLERR, "Fix {}: target = {} must be > 0 (m); usage: {}", style, target, usage);
 }
 
+int FixSaltdemMotion::parse_common(const std::string &kw, const std::string &val)
+{
+  if (kw == "rate")
+    rate = number_arg("rate", val.c_str());
+  else if (kw == "target")
+    target = number_arg("target", val.c_str());
+  else if (kw == "at_target") {
+    if (val == "stop")
+      end_run = 0;
+    else if (val == "end")
+      end_run = 1;
+    else
+      error->all(FLERR, "Fix {}: at_target '{}' must be stop or end", style, val);
+  } else if (kw == "toward" && has_toward) {
+    if (val == "right")
+      sense = 1;
+    else if (val == "left")
+      sense = -1;
+    else
+      error->all(FLERR, "Fix {}: toward '{}' must be right or left", style, val);
+  } else
+    return 0;
+  return 1;
+}
+
+int FixSaltdemMotion::parse_args(int iarg, int narg, char **arg)
+{
+  if (iarg + 2 > narg)
+    utils::missing_cmd_args(FLERR, fmt::format("fix {} {}", style, arg[iarg]), error);
+  return parse_keyword(arg[iarg], arg[iarg + 1]) ? 2 : 0;
+}
+
+double FixSaltdemMotion::number_arg(const std::string &what, const char *val)
+{
+  return SaltDEM::numeric(FLERR, val, fmt::format("Fix {}: {}", style, what), lmp);
+}
+
+FixSaltdemMotion::Block FixSaltdemMotion::translation(int igroup, double vx, double vy)
+{
+  return {igroup, {vx, vy, 0.0}, 0.0, {0.0, 0.0}, 0.0, std::numeric_limits<double>::infinity()};
+}
+
+double FixSaltdemMotion::active(const Block &b, double d)
+{
+  return MAX(MIN(d, b.to) - b.from, 0.0);
+}
+
 double FixSaltdemMotion::angle_arg(const std::string &kw, const std::string &val)
 {
-  const double a = SaltDEM::numeric(FLERR, val.c_str(), fmt::format("Fix {}: {}", style, kw), lmp);
+  const double a = number_arg(kw, val.c_str());
   if (a <= 0.0 || a >= 90.0)
     error->all(FLERR, "Fix {}: {} = {} must be in (0, 90) degrees; usage: {}", style, kw, a, usage);
   return a;
@@ -130,8 +161,7 @@ void FixSaltdemMotion::init()
   // the walls jump through discs when a step moves a block by a good part of the smallest
   // radius of the scene (the fastest block: the right block of a keystone moves at 2 cos D)
   double speed = 0.0;
-  for (const auto &b : blocks)
-    speed = MAX(speed, sqrt(b.vel[0] * b.vel[0] + b.vel[1] * b.vel[1] + b.vel[2] * b.vel[2]));
+  for (const auto &b : blocks) speed = MAX(speed, block_speed(b));
   double rmin = DBL_MAX, rminall;
   if (atom->radius_flag)
     for (int i = 0; i < atom->nlocal; i++)
@@ -148,18 +178,59 @@ void FixSaltdemMotion::init()
   }
 }
 
+/* the block's fastest disc per unit of drive rate: its translation plus its turn times the
+   largest distance of its discs from the pivot (where the pivot is now) */
+
+double FixSaltdemMotion::block_speed(const Block &b)
+{
+  double speed = sqrt(b.vel[0] * b.vel[0] + b.vel[1] * b.vel[1] + b.vel[2] * b.vel[2]);
+  if (b.omega == 0.0) return speed;
+  const double a = active(b, disp), px = b.pivot[0] + a * b.vel[0], py = b.pivot[1] + a * b.vel[1];
+  double r2 = 0.0, r2all;
+  double **x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (block_of(i) == &b) {
+      const double dx = x[i][0] - px, dy = x[i][1] - py;
+      r2 = MAX(r2, dx * dx + dy * dy);
+    }
+  MPI_Allreduce(&r2, &r2all, 1, MPI_DOUBLE, MPI_MAX, world);
+  return speed + fabs(b.omega) * sqrt(r2all);
+}
+
+/* the block of local atom i, nullptr if it is not in the fix group */
+
+const FixSaltdemMotion::Block *FixSaltdemMotion::block_of(int i) const
+{
+  const int m = atom->mask[i];
+  if (!(m & groupbit)) return nullptr;
+  for (const auto &b : blocks)
+    if (b.igroup < 0 || (m & group->bitmask[b.igroup])) return &b;
+  return nullptr;
+}
+
+/* the discs take their block's velocity at the present drive displacement: translation plus
+   turn about the pivot, and the block's spin; rate 0 (stopped) or a block outside its window
+   leaves them at rest */
+
 void FixSaltdemMotion::set_velocity(double speed)
 {
-  double **v = atom->v, **omega = atom->omega;
-  int *mask = atom->mask;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
   for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    for (const auto &b : blocks)
-      if (b.igroup < 0 || (mask[i] & group->bitmask[b.igroup])) {
-        for (int k = 0; k < 3; k++) v[i][k] = speed * b.vel[k];
-        break;
-      }
-    if (omega) omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
+    const Block *b = block_of(i);
+    if (!b) continue;
+    const double s = (disp >= b->from && disp < b->to) ? speed : 0.0;
+    for (int k = 0; k < 3; k++) v[i][k] = s * b->vel[k];
+    if (b->omega != 0.0) {
+      const double a = active(*b, disp);
+      const double dx = x[i][0] - (b->pivot[0] + a * b->vel[0]);
+      const double dy = x[i][1] - (b->pivot[1] + a * b->vel[1]);
+      v[i][0] -= s * b->omega * dy;
+      v[i][1] += s * b->omega * dx;
+    }
+    if (omega) {
+      omega[i][0] = omega[i][1] = 0.0;
+      omega[i][2] = s * b->omega;
+    }
   }
 }
 
@@ -167,6 +238,10 @@ void FixSaltdemMotion::setup(int)
 {
   set_velocity(disp < target ? rate : 0.0);
 }
+
+/* each block moves by the part of this step's drive that falls in its window: a turn about
+   its pivot where the step starts, then the translation (the exact rigid motion at constant
+   velocity and spin) */
 
 void FixSaltdemMotion::initial_integrate(int)
 {
@@ -176,15 +251,30 @@ void FixSaltdemMotion::initial_integrate(int)
     if (end_run) end_this_run();
     return;
   }
+  const int nb = blocks.size();
+  std::vector<double> ds(nb), c(nb), sn(nb), px(nb), py(nb);
+  for (int k = 0; k < nb; k++) {
+    const Block &b = blocks[k];
+    // a step inside the window moves by the step itself, bit for bit
+    ds[k] = (disp >= b.from && disp + step <= b.to) ? step
+                                                    : active(b, disp + step) - active(b, disp);
+    c[k] = cos(b.omega * ds[k]);
+    sn[k] = sin(b.omega * ds[k]);
+    px[k] = b.pivot[0] + active(b, disp) * b.vel[0];
+    py[k] = b.pivot[1] + active(b, disp) * b.vel[1];
+  }
   double **x = atom->x;
-  int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    for (const auto &b : blocks)
-      if (b.igroup < 0 || (mask[i] & group->bitmask[b.igroup])) {
-        for (int k = 0; k < 3; k++) x[i][k] += step * b.vel[k];
-        break;
-      }
+    const Block *b = block_of(i);
+    if (!b) continue;
+    const int k = b - blocks.data();
+    if (ds[k] == 0.0) continue;
+    if (b->omega != 0.0) {
+      const double dx = x[i][0] - px[k], dy = x[i][1] - py[k];
+      x[i][0] = px[k] + c[k] * dx - sn[k] * dy;
+      x[i][1] = py[k] + sn[k] * dx + c[k] * dy;
+    }
+    for (int j = 0; j < 3; j++) x[i][j] += ds[k] * b->vel[j];
   }
   disp += step;
   set_velocity(disp < target ? rate : 0.0);

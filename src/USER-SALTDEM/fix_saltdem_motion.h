@@ -41,12 +41,20 @@ class FixSaltdemMotion : public Fix {
  protected:
   // Rigid blocks of wall discs.  An atom of the fix group belongs to the first block
   // whose group holds it; a block with group -1 takes the rest of the fix group.
-  // Each block moves with velocity rate * vel (vel in units of the drive rate).
+  // Per unit of drive displacement inside its window [from, to], a block translates by vel
+  // and turns by omega (radians, counterclockwise) about its pivot, which moves with it.
   struct Block {
     int igroup;
     double vel[3];
+    double omega;
+    double pivot[2];    // the pivot's position at the start of the motion
+    double from, to;
   };
   std::vector<Block> blocks;
+  // a block that translates by (vx, vy) per unit of drive over the whole motion
+  static Block translation(int igroup, double vx, double vy);
+  // the drive displacement block b has moved by at drive displacement d
+  static double active(const Block &b, double d);
 
   double rate;       // drive rate (m/s): the displacement the fix reports grows at this rate
   double target;     // drive displacement at which the blocks stop (m)
@@ -62,15 +70,22 @@ class FixSaltdemMotion : public Fix {
   std::string usage;
 
   // parse the keywords shared by all motion fixes (rate, target, at_target, and toward where
-  // has_toward is set) and call parse_keyword() for the others (it returns 1 if it took
-  // arg[iarg], arg[iarg+1]); then check rate and target
+  // has_toward is set) and call parse_args() for the others; then check rate and target
   void parse(int narg, char **arg);
+  int parse_common(const std::string &kw, const std::string &val);    // 1: taken
+  // the fix's own keywords at arg[iarg]: the number of arguments taken (0: unknown); by
+  // default a keyword-value pair handed to parse_keyword()
+  virtual int parse_args(int iarg, int narg, char **arg);
   virtual int parse_keyword(const std::string &, const std::string &) { return 0; }
+  double number_arg(const std::string &what, const char *val);
   double angle_arg(const std::string &kw, const std::string &val);    // (0,90) degrees
   int group_arg(const std::string &kw, const std::string &val);
 
  private:
   void set_velocity(double speed);
+  double block_speed(const Block &b);    // fastest disc of the block per unit of drive rate
+ protected:
+  const Block *block_of(int i) const;    // the block of local atom i (nullptr: none)
   void end_this_run();
 };
 

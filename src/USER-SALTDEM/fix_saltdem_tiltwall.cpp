@@ -64,7 +64,7 @@ FixSaltdemTiltwall::FixSaltdemTiltwall(LAMMPS *lmp, int narg, char **arg) :
                "Fix {}: the gravity group must be the discs that move freely, not the "
                "wall group {}",
                style, group->names[igroup]);
-  blocks.push_back({-1, {double(sense), 0.0, 0.0}});
+  blocks.push_back(translation(-1, double(sense), 0.0));
   size_vector = 3;
 }
 

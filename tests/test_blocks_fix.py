@@ -170,6 +170,43 @@ comm_modify vel yes
         np.testing.assert_array_equal(got[col], ref[col])
 
 
+def test_phases_of_one_block(lmp):
+    """A block given again moves in phases: block a slides 0.6 m right per m of drive up to
+    10 m, rests, then turns 3 degrees per m about (-10, 5), which is where it was at 10 m, from
+    14 m to the target; the reports follow its reference point (its first pivot, here 0 0)."""
+    fix = ("fix bl moving saltdem/blocks rate 20 target 25 block a move 0.6 0 to 10 "
+           "block b move 0 -1 block c move 1 0 block a rotate -4 5 3 from 14\n")
+    thermo = """timestep 0.1
+thermo_style custom step f_bl[1] f_bl[1][1] f_bl[1][2] f_bl[1][3] f_bl[1][4] f_bl[1][5] f_bl[2][3]
+thermo_modify format float %.17g
+thermo 1
+"""
+    r = lmp(deck(20, fix=fix, thermo=thermo), extra="")
+    check_ok(r)
+    f = read_dump(r.workdir / "final.txt")
+    th = math.radians(3.0 * (TARGET - 14.0))
+    rot = np.array([[math.cos(th), -math.sin(th)], [math.sin(th), math.cos(th)]])
+    p = np.array([-4.0, 5.0])
+    for k, i in ((1, 2), (2, 3)):
+        x10 = np.array(START[i]) + [6.0, 0.0]
+        want = p + rot @ (x10 - p)
+        np.testing.assert_allclose([f["x"][k], f["y"][k]], want, rtol=0, atol=1e-11)
+    t = r.thermo()
+    last = {c: t[c][-1] for c in t}
+    ref = p + rot @ (np.array([6.0, 0.0]) - p)     # the reference point (0, 0) carried along
+    assert last["f_bl[1][2]"] == pytest.approx(ref[0], abs=1e-11)
+    assert last["f_bl[1][3]"] == pytest.approx(-ref[1], abs=1e-11)
+    assert last["f_bl[1][1]"] == pytest.approx(np.hypot(*ref), abs=1e-11)
+    assert last["f_bl[1][4]"] == pytest.approx(3.0 * 11.0, rel=1e-12)
+    assert last["f_bl[1][5]"] == pytest.approx(1.0)
+    assert last["f_bl[2][3]"] == pytest.approx(TARGET)
+    # resting between the phases: drive 10-14 m is steps 5-7; progress 10/21 there
+    steps = list(t["Step"])
+    k6 = steps.index(6)
+    assert t["f_bl[1][5]"][k6] == pytest.approx(10.0 / 21.0)
+    assert t["f_bl[1][2]"][k6] == pytest.approx(6.0)
+
+
 # the paper's motion fixes and their saltdem/blocks form give the same trajectories bit for bit
 KEY = """
 group left id 1
@@ -204,7 +241,8 @@ def test_paper_fixes_are_instances(lmp, old, new):
     ("fix bl moving saltdem/blocks rate 20 target 25 block a", ["block a has no kinematics"]),
     ("fix bl moving saltdem/blocks rate 20 target 25 block a from 3", ["block a has no kinematics"]),
     ("fix bl moving saltdem/blocks rate 20 target 25 block nosuch move 1 0", ["block group 'nosuch' does not exist"]),
-    ("fix bl moving saltdem/blocks rate 20 target 25 block a move 1 0 block a move 0 1", ["block a is given twice"]),
+    ("fix bl moving saltdem/blocks rate 20 target 25 block a move 1 0 block a move 0 1 block b move 1 0 block c move 1 0",
+     ["block a is given again with a window (from 0 to 25) that starts before its previous one ends"]),
     ("fix bl moving saltdem/blocks rate 20 target 25 block a move 1 0 to 30", ["beyond the target 25"]),
     ("fix bl moving saltdem/blocks rate 20 target 25 block a move 1 0 from 10 to 5", ["from 10 to 5"]),
     ("fix bl moving saltdem/blocks rate 20 target 25 block a move 1 0 from 25", ["not before the target"]),

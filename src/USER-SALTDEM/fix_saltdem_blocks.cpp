@@ -57,10 +57,31 @@ FixSaltdemBlocks::FixSaltdemBlocks(LAMMPS *lmp, int narg, char **arg) :
                  "Fix {}: block {} starts at drive displacement {} m, not before the target {} m",
                  style, group->names[b.igroup], b.from, target);
   }
+  // a block given again is a later phase of its motion: after the previous one, in order
+  link_phases();
+  const int n = blocks.size();
+  for (int k = 0; k < n; k++) {
+    const int j = blocks[k].next;
+    if (j >= 0 && blocks[j].from < blocks[k].to)
+      error->all(FLERR,
+                 "Fix {}: block {} is given again with a window (from {} to {}) that starts "
+                 "before its previous one ends ({} to {}); give a block's phases in order, "
+                 "each from where the previous one ends or later",
+                 style, group->names[blocks[k].igroup], blocks[j].from, blocks[j].to,
+                 blocks[k].from, blocks[k].to);
+    bool first = true;
+    for (int i = 0; i < k; i++)
+      if (blocks[i].igroup == blocks[k].igroup) first = false;
+    if (first) {
+      firsts.push_back(k);
+      ref0.push_back(blocks[k].pivot[0]);
+      ref0.push_back(blocks[k].pivot[1]);
+    }
+  }
   vector_flag = 1;
   size_vector = 1;
   array_flag = 1;
-  size_array_rows = blocks.size();
+  size_array_rows = firsts.size();
   size_array_cols = 5;
   extarray = 0;
 }
@@ -78,9 +99,6 @@ int FixSaltdemBlocks::parse_block(int iarg, int narg, char **arg)
   if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, fmt::format("fix {} block", style), error);
   const std::string name = arg[iarg + 1];
   Block b = translation(group_arg("block", name), 0.0, 0.0);
-  for (const auto &o : blocks)
-    if (o.igroup == b.igroup)
-      error->all(FLERR, "Fix {}: block {} is given twice; give each block once", style, name);
   double scale = 1.0;
   int kinematics = 0, n = iarg + 2;
   auto need = [&](int k, const char *kw) {
@@ -110,8 +128,9 @@ int FixSaltdemBlocks::parse_block(int iarg, int narg, char **arg)
         error->all(FLERR, "Fix {}: block {}: slip {} '{}': the fault must dip toward right or left",
                    style, name, dip, side);
       // the hanging wall of a fault dipping toward +x moves down and right
-      b.vel[0] += (side == "right" ? 1.0 : -1.0) * cos(dip * DEG);
-      b.vel[1] -= sin(dip * DEG);
+      const double a = dip * M_PI / 180.0;    // as fix saltdem/fault: the same bits
+      b.vel[0] += (side == "right" ? 1.0 : -1.0) * cos(a);
+      b.vel[1] -= sin(a);
       kinematics = 1;
     } else if (kw == "rotate") {
       need(3, "rotate");
@@ -157,7 +176,7 @@ int FixSaltdemBlocks::parse_block(int iarg, int narg, char **arg)
 void FixSaltdemBlocks::init()
 {
   FixSaltdemMotion::init();
-  const int nb = blocks.size();
+  const int nb = firsts.size();
   bigint none = 0;
   std::vector<bigint> both(nb * nb, 0), all(nb * nb + 1);
   int *mask = atom->mask;
@@ -165,7 +184,7 @@ void FixSaltdemBlocks::init()
     if (!(mask[i] & groupbit)) continue;
     int first = -1;
     for (int k = 0; k < nb; k++)
-      if (mask[i] & group->bitmask[blocks[k].igroup]) {
+      if (mask[i] & group->bitmask[blocks[firsts[k]].igroup]) {
         if (first < 0)
           first = k;
         else
@@ -175,29 +194,32 @@ void FixSaltdemBlocks::init()
   }
   both.push_back(none);
   MPI_Allreduce(both.data(), all.data(), nb * nb + 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  auto name = [&](int k) {
+    return group->names[blocks[firsts[k]].igroup];
+  };
   for (int j = 0; j < nb; j++)
     for (int k = 0; k < nb; k++)
       if (all[j * nb + k] > 0)
         error->all(FLERR,
                    "Fix {} {}: blocks {} and {} overlap ({} atoms in both); each wall disc "
                    "belongs to one block",
-                   style, id, group->names[blocks[j].igroup], group->names[blocks[k].igroup],
-                   all[j * nb + k]);
+                   style, id, name(j), name(k), all[j * nb + k]);
   if (all[nb * nb] > 0)
     error->all(FLERR,
                "Fix {} {}: {} atoms of the fix group {} are in no block; give them a block or "
                "leave them out of the group",
                style, id, all[nb * nb], group->names[igroup]);
-  for (const auto &b : blocks) {
+  for (int k = 0; k < nb; k++) {
+    const int bit = group->bitmask[blocks[firsts[k]].igroup];
     bigint out = 0, outall;
     for (int i = 0; i < atom->nlocal; i++)
-      if ((mask[i] & group->bitmask[b.igroup]) && !(mask[i] & groupbit)) out++;
+      if ((mask[i] & bit) && !(mask[i] & groupbit)) out++;
     MPI_Allreduce(&out, &outall, 1, MPI_LMP_BIGINT, MPI_SUM, world);
     if (outall > 0)
       error->all(FLERR,
                  "Fix {} {}: {} atoms of block {} are not in the fix group {}; the fix group "
                  "holds every block",
-                 style, id, outall, group->names[b.igroup], group->names[igroup]);
+                 style, id, outall, name(k), group->names[igroup]);
   }
 }
 
@@ -208,16 +230,24 @@ double FixSaltdemBlocks::compute_vector(int)
   return disp;
 }
 
-/* per block: 1 displacement of its pivot (or of every disc of a block that does not turn),
-   2 heave (x), 3 throw (down), 4 turn (degrees, counterclockwise), 5 progress (0-1) */
+/* per block: 1 displacement of its reference point (the pivot of its first phase; any disc
+   of a block that never turns), 2 heave (x), 3 throw (down), 4 turn (degrees,
+   counterclockwise), 5 progress (0-1: the part of its windows done) */
 
 double FixSaltdemBlocks::compute_array(int i, int j)
 {
-  const Block &b = blocks[i];
-  const double a = active(b, disp);
-  if (j == 0) return a * sqrt(b.vel[0] * b.vel[0] + b.vel[1] * b.vel[1]);
-  if (j == 1) return a * b.vel[0];
-  if (j == 2) return -a * b.vel[1];
-  if (j == 3) return a * b.omega / DEG;
-  return a / (b.to - b.from);
+  const int first = firsts[i];
+  double x[2], turn;
+  carry(first, disp, &ref0[2 * i], x, turn);
+  const double dx = x[0] - ref0[2 * i], dy = x[1] - ref0[2 * i + 1];
+  if (j == 0) return sqrt(dx * dx + dy * dy);
+  if (j == 1) return dx;
+  if (j == 2) return -dy;
+  if (j == 3) return turn / DEG;
+  double done = 0.0, length = 0.0;
+  for (int k = first; k >= 0; k = blocks[k].next) {
+    done += active(blocks[k], disp);
+    length += blocks[k].to - blocks[k].from;
+  }
+  return done / length;
 }

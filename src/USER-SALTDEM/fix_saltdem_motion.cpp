@@ -112,7 +112,35 @@ double FixSaltdemMotion::number_arg(const std::string &what, const char *val)
 
 FixSaltdemMotion::Block FixSaltdemMotion::translation(int igroup, double vx, double vy)
 {
-  return {igroup, {vx, vy, 0.0}, 0.0, {0.0, 0.0}, 0.0, std::numeric_limits<double>::infinity()};
+  return {igroup, {vx, vy, 0.0}, 0.0, {0.0, 0.0}, 0.0, std::numeric_limits<double>::infinity(), -1};
+}
+
+void FixSaltdemMotion::link_phases()
+{
+  const int n = blocks.size();
+  for (int k = 0; k < n; k++) {
+    blocks[k].next = -1;
+    for (int j = k + 1; j < n && blocks[k].igroup >= 0; j++)
+      if (blocks[j].igroup == blocks[k].igroup) {
+        blocks[k].next = j;
+        break;
+      }
+  }
+}
+
+void FixSaltdemMotion::carry(int k, double d, const double x0[2], double x[2], double &turn) const
+{
+  x[0] = x0[0];
+  x[1] = x0[1];
+  turn = 0.0;
+  for (; k >= 0; k = blocks[k].next) {
+    const Block &b = blocks[k];
+    const double a = active(b, d), c = cos(b.omega * a), s = sin(b.omega * a);
+    const double dx = x[0] - b.pivot[0], dy = x[1] - b.pivot[1];
+    x[0] = b.pivot[0] + a * b.vel[0] + c * dx - s * dy;
+    x[1] = b.pivot[1] + a * b.vel[1] + s * dx + c * dy;
+    turn += b.omega * a;
+  }
 }
 
 double FixSaltdemMotion::active(const Block &b, double d)
@@ -142,6 +170,7 @@ int FixSaltdemMotion::setmask()
 
 void FixSaltdemMotion::init()
 {
+  link_phases();
   if (group->count(igroup) == 0)
     error->all(FLERR, "Fix {} {}: group {} has no atoms", style, id, group->names[igroup]);
   for (const auto &b : blocks)
@@ -188,8 +217,9 @@ double FixSaltdemMotion::block_speed(const Block &b)
   const double a = active(b, disp), px = b.pivot[0] + a * b.vel[0], py = b.pivot[1] + a * b.vel[1];
   double r2 = 0.0, r2all;
   double **x = atom->x;
+  const int k = &b - blocks.data();
   for (int i = 0; i < atom->nlocal; i++)
-    if (block_of(i) == &b) {
+    if (in_chain(block_of(i), k)) {
       const double dx = x[i][0] - px, dy = x[i][1] - py;
       r2 = MAX(r2, dx * dx + dy * dy);
     }
@@ -197,30 +227,33 @@ double FixSaltdemMotion::block_speed(const Block &b)
   return speed + fabs(b.omega) * sqrt(r2all);
 }
 
-/* the block of local atom i, nullptr if it is not in the fix group */
+/* the first phase of local atom i's block, -1 if it is not in the fix group */
 
-const FixSaltdemMotion::Block *FixSaltdemMotion::block_of(int i) const
+int FixSaltdemMotion::block_of(int i) const
 {
   const int m = atom->mask[i];
-  if (!(m & groupbit)) return nullptr;
-  for (const auto &b : blocks)
-    if (b.igroup < 0 || (m & group->bitmask[b.igroup])) return &b;
-  return nullptr;
+  if (!(m & groupbit)) return -1;
+  const int n = blocks.size();
+  for (int k = 0; k < n; k++)
+    if (blocks[k].igroup < 0 || (m & group->bitmask[blocks[k].igroup])) return k;
+  return -1;
 }
 
-/* the discs take their block's velocity at the present drive displacement: translation plus
-   turn about the pivot, and the block's spin; rate 0 (stopped) or a block outside its window
-   leaves them at rest */
+/* the discs take the velocity of their block's phase at the present drive displacement:
+   translation plus turn about the pivot, and the phase's spin; rate 0 (stopped) or no phase
+   whose window holds the drive leaves them at rest */
 
 void FixSaltdemMotion::set_velocity(double speed)
 {
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
   for (int i = 0; i < atom->nlocal; i++) {
-    const Block *b = block_of(i);
-    if (!b) continue;
-    const double s = (disp >= b->from && disp < b->to) ? speed : 0.0;
-    for (int k = 0; k < 3; k++) v[i][k] = s * b->vel[k];
-    if (b->omega != 0.0) {
+    int k = block_of(i);
+    if (k < 0) continue;
+    while (k >= 0 && !(disp >= blocks[k].from && disp < blocks[k].to)) k = blocks[k].next;
+    const Block *b = k >= 0 ? &blocks[k] : nullptr;
+    const double s = b ? speed : 0.0;
+    for (int j = 0; j < 3; j++) v[i][j] = b ? s * b->vel[j] : 0.0;
+    if (b && b->omega != 0.0) {
       const double a = active(*b, disp);
       const double dx = x[i][0] - (b->pivot[0] + a * b->vel[0]);
       const double dy = x[i][1] - (b->pivot[1] + a * b->vel[1]);
@@ -229,7 +262,7 @@ void FixSaltdemMotion::set_velocity(double speed)
     }
     if (omega) {
       omega[i][0] = omega[i][1] = 0.0;
-      omega[i][2] = s * b->omega;
+      omega[i][2] = b ? s * b->omega : 0.0;
     }
   }
 }
@@ -264,18 +297,17 @@ void FixSaltdemMotion::initial_integrate(int)
     py[k] = b.pivot[1] + active(b, disp) * b.vel[1];
   }
   double **x = atom->x;
-  for (int i = 0; i < atom->nlocal; i++) {
-    const Block *b = block_of(i);
-    if (!b) continue;
-    const int k = b - blocks.data();
-    if (ds[k] == 0.0) continue;
-    if (b->omega != 0.0) {
-      const double dx = x[i][0] - px[k], dy = x[i][1] - py[k];
-      x[i][0] = px[k] + c[k] * dx - sn[k] * dy;
-      x[i][1] = py[k] + sn[k] * dx + c[k] * dy;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = block_of(i); k >= 0; k = blocks[k].next) {
+      if (ds[k] == 0.0) continue;
+      const Block &b = blocks[k];
+      if (b.omega != 0.0) {
+        const double dx = x[i][0] - px[k], dy = x[i][1] - py[k];
+        x[i][0] = px[k] + c[k] * dx - sn[k] * dy;
+        x[i][1] = py[k] + sn[k] * dx + c[k] * dy;
+      }
+      for (int j = 0; j < 3; j++) x[i][j] += ds[k] * b.vel[j];
     }
-    for (int j = 0; j < 3; j++) x[i][j] += ds[k] * b->vel[j];
-  }
   disp += step;
   set_velocity(disp < target ? rate : 0.0);
   if (disp >= target) {

@@ -39,22 +39,29 @@ class FixSaltdemMotion : public Fix {
   void restart(char *) override;
 
  protected:
-  // Rigid blocks of wall discs.  An atom of the fix group belongs to the first block
-  // whose group holds it; a block with group -1 takes the rest of the fix group.
-  // Per unit of drive displacement inside its window [from, to], a block translates by vel
-  // and turns by omega (radians, counterclockwise) about its pivot, which moves with it.
+  // Rigid blocks of wall discs, in phases.  An atom of the fix group belongs to the block
+  // of the first phase whose group holds it; a phase with group -1 takes the rest of the
+  // fix group.  Per unit of drive displacement inside its window [from, to], a phase
+  // translates its block by vel and turns it by omega (radians, counterclockwise) about its
+  // pivot (where it is at the window's start), which moves with the translation.  Phases of
+  // one block (the same group) follow each other in disjoint windows, in order.
   struct Block {
     int igroup;
     double vel[3];
     double omega;
-    double pivot[2];    // the pivot's position at the start of the motion
+    double pivot[2];
     double from, to;
+    int next;    // the block's next phase, -1: none (set by link_phases())
   };
   std::vector<Block> blocks;
   // a block that translates by (vx, vy) per unit of drive over the whole motion
   static Block translation(int igroup, double vx, double vy);
-  // the drive displacement block b has moved by at drive displacement d
+  // the drive displacement phase b has moved by at drive displacement d
   static double active(const Block &b, double d);
+  void link_phases();
+  // where the point x0 (at drive 0) of the block whose first phase is k is at drive d, and
+  // by how much it has turned (radians)
+  void carry(int k, double d, const double x0[2], double x[2], double &turn) const;
 
   double rate;       // drive rate (m/s): the displacement the fix reports grows at this rate
   double target;     // drive displacement at which the blocks stop (m)
@@ -85,7 +92,13 @@ class FixSaltdemMotion : public Fix {
   void set_velocity(double speed);
   double block_speed(const Block &b);    // fastest disc of the block per unit of drive rate
  protected:
-  const Block *block_of(int i) const;    // the block of local atom i (nullptr: none)
+  int block_of(int i) const;               // the first phase of local atom i's block (-1: none)
+  bool in_chain(int first, int k) const    // phase k is one of the phases from first on
+  {
+    for (; first >= 0; first = blocks[first].next)
+      if (first == k) return true;
+    return false;
+  }
   void end_this_run();
 };
 

@@ -247,13 +247,15 @@ void FixSaltdemMotion::set_velocity(double speed)
 {
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
   for (int i = 0; i < atom->nlocal; i++) {
-    int k = block_of(i);
-    if (k < 0) continue;
+    const int first = block_of(i);
+    if (first < 0) continue;
+    int k = first;
     while (k >= 0 && !(disp >= blocks[k].from && disp < blocks[k].to)) k = blocks[k].next;
-    const Block *b = k >= 0 ? &blocks[k] : nullptr;
-    const double s = b ? speed : 0.0;
-    for (int j = 0; j < 3; j++) v[i][j] = b ? s * b->vel[j] : 0.0;
-    if (b && b->omega != 0.0) {
+    // no phase holds the drive: at rest (the first phase's velocity times 0)
+    const Block *b = &blocks[k >= 0 ? k : first];
+    const double s = k >= 0 ? speed : 0.0;
+    for (int j = 0; j < 3; j++) v[i][j] = s * b->vel[j];
+    if (b->omega != 0.0) {
       const double a = active(*b, disp);
       const double dx = x[i][0] - (b->pivot[0] + a * b->vel[0]);
       const double dy = x[i][1] - (b->pivot[1] + a * b->vel[1]);
@@ -262,7 +264,7 @@ void FixSaltdemMotion::set_velocity(double speed)
     }
     if (omega) {
       omega[i][0] = omega[i][1] = 0.0;
-      omega[i][2] = b ? s * b->omega : 0.0;
+      omega[i][2] = s * b->omega;
     }
   }
 }

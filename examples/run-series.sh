@@ -19,6 +19,9 @@
 #   syntectonic  Expt 1 with sedimentation that keeps filling the hanging-wall low (every 50 m
 #            of slip, fill to the initial top of the section: examples/scene/sediment.in)
 #            beside the plain Expt 1 (issue 18; docs/gallery.md, "Beyond the paper")
+#   sections the sections beyond the paper's (examples/sections, docs/sections.md): three domino
+#            basement faults, salt pinching out over a basement step on an extending margin, a
+#            salt pillow under a two-unit cover
 #   wedge    loading by a prograding wedge (examples/wedge.in): the front migrates 3 km at
 #            0.317 m/s (10 km/Myr natural), filling behind it to 400 m above the initial top
 #   gallery  everything docs/gallery.md shows: at quick expts, fig7, eta100, contact, seeds and fig6;
@@ -35,7 +38,7 @@
 # own ONLY list).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|fv|eta100|syntectonic|wedge|gallery [full|medium|quick|tiny] [-- lmp args]}
+series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|fv|eta100|syntectonic|wedge|sections|gallery [full|medium|quick|tiny] [-- lmp args]}
 preset=${2:-full}
 shift $(( $# >= 2 ? 2 : 1 ))
 [ "${1:-}" = "--" ] && shift
@@ -75,6 +78,8 @@ fv=("expt1_fv expt1 0.05 $fvs" "expt2_fv expt2 0.05 $fvs" "expt3_fv expt3 0.05 $
     "fig7_salt250_fv expt1 0.05 -var dip 65 -var salt 250 $fvs")
 syntectonic=("expt1 expt1 0.05" "expt1_sedfill expt1 0.05 -var sediment fill")
 wedge=("wedge wedge 0.317")
+# sections (examples/sections/NAME.toml, written into a deck by python/saltdem-section)
+sections=("domino section:domino 0.05" "pinchout section:pinchout 0.05" "pillow section:pillow 0.05")
 eta100=("expt1_eta100x expt1 0.05 -var eta 5e10 -var S 400" "expt3_eta100x expt3 0.05 -var eta 5e10 -var S 400"
         "expt2_eta100x expt2 0.05 -var eta 5e10 -var S 400"
         "expt1_slow_eta100x expt1 0.01 -var eta 5e10 -var S 400"
@@ -92,10 +97,11 @@ case $series in
   fv)    runs=("${fv[@]}") ;;
   syntectonic) runs=("${syntectonic[@]}") ;;
   wedge) runs=("${wedge[@]}") ;;
+  sections) runs=("${sections[@]}") ;;
   gallery)
     if [ "$preset" = medium ]; then runs=("expt1 expt1 0.05" "expt3 expt3 0.05" "${fig7[@]}")
     else runs=("${expts[@]}" "${fig7[@]}" "${eta100[@]}" "${contact[@]}" "${seeds[@]}" "${fig6[@]}"); fi ;;
-  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, fv, eta100, syntectonic, wedge or gallery" >&2; exit 2 ;;
+  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, fv, eta100, syntectonic, wedge, sections or gallery" >&2; exit 2 ;;
 esac
 msuffix=""
 case ${SALTMODEL:-} in
@@ -137,19 +143,30 @@ for r in "${runs[@]}"; do
   resume=()
   from=$(pick_restart "$out" "$deck" "$name")
   [ -n "$from" ] && resume=(-var restart "$from")
-  echo "run-series: $name ($deck.in -var rate $rate $vars ${resume[*]}) in $out"
-  echo "lmp -in examples/$deck.in -var preset $preset -var rate $rate $vars" | tr -s ' ' > "$out/cmd.txt"
+  deckfile=$root/examples/$deck.in
+  if [[ $deck == section:* ]]; then
+    deck=${deck#section:}
+    "$py" "$root/python/saltdem-section" "$root/examples/sections/$deck.toml" -o "$out/$deck.in" > /dev/null
+    deckfile=$out/$deck.in
+  fi
+  echo "run-series: $name (${deckfile#"$root"/} -var rate $rate $vars ${resume[*]}) in $out"
+  echo "lmp -in ${deckfile#"$root"/} -var preset $preset -var rate $rate $vars" | tr -s ' ' > "$out/cmd.txt"
   start=$(date +%s)
   # segment number from the segments' own output (a killed one left its stdout but no wall time)
   seg=$(( $(find "$out" -maxdepth 1 -name 'stdout.*.txt' | wc -l) + 1 ))    # log.lammps, log.2.lammps, ...
   log=log.lammps; [ "$seg" -gt 1 ] && log=log.$seg.lammps
   # shellcheck disable=SC2086
-  (cd "$out" && ${MPIRUN:-} "$lmp" -in "$root/examples/$deck.in" -var root "$root" \
+  (cd "$out" && ${MPIRUN:-} "$lmp" -in "$deckfile" -var root "$root" \
       -var preset "$preset" -var rate "$rate" $vars "${resume[@]}" -log "$log" "$@" > stdout.$seg.txt)
   echo "$(( $(date +%s) - start ))" >> "$out/wall_segments.txt"
   faults=(--fault-x 3125); [ "$deck" = expt2 ] && faults=(--fault-x 5000 7500)
   [ "$deck" = expt3 ] && faults=()
   scene=fault; [ "$deck" = expt2 ] && scene=keystone; [ "$deck" = expt3 ] && scene=tilted
+  if [ "$deckfile" = "$out/$deck.in" ]; then    # a section: its faults from its description
+    read -r -a fx <<< "$("$py" "$root/python/saltdem-section" "$root/examples/sections/$deck.toml" --faults)"
+    faults=(); scene=tilted
+    [ ${#fx[@]} -gt 0 ] && { faults=(--fault-x "${fx[@]}"); scene=fault; }
+  fi
   # the wedge: no basement fault (measured as a scene without one), its stages are the front's
   # migration, the incremental strain over 250 m of it
   [ "$deck" = wedge ] && { faults=(--increment 250 --at 500 1000 1500 2000 3000); scene=tilted; }

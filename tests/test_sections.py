@@ -176,3 +176,11 @@ def test_not_toml_is_a_clear_error(tmp_path):
     bad.write_text("width = = 3\n")
     r = subprocess.run([sys.executable, str(GEN), str(bad), "--check"], capture_output=True, text=True)
     assert r.returncode == 1 and "not a valid description" in r.stderr
+
+
+def test_a_preset_that_cannot_pack_the_section_stops(tmp_path):
+    d = write_deck(ROOT / "examples" / "sections" / "fig7.toml", tmp_path / "fig7.in")
+    r = run_deck(d, tmp_path / "run", "-var", "salt", "250")
+    assert r.returncode == 1
+    assert "section fig7: preset tiny cannot pack it: salt 250 m" in r.stdout
+    assert not list((tmp_path / "run").glob("dump.*"))

@@ -528,6 +528,11 @@ def deck(s: Section) -> str:
     for k, v in s.extra_vars.items():
         L.append(f"variable        {k} index {v}")
     L += ["include         ${root}/examples/scene/params.in",
+          "# the preset must resolve the section: two discs across salt and cover, ten along it",
+          f'if "${{salt}} < $(2*v_rmax) || ${{cover}} < $(2*v_rmax) || ${{width}} < $(10*v_rmax)" then &',
+          f"  \"print 'section {s.name}: preset ${{preset}} cannot pack it: salt ${{salt}} m, cover ${{cover}} m "
+          f"and width ${{width}} m need 2, 2 and 10 of its largest discs (radius ${{rmax}} m); use a finer "
+          f"preset'\" \"quit 1\"",
           "",
           "# the box leaves room for the blocks to travel the target displacement",
           f"variable        bxlo equal -3*${{rmax}}-{left_x}",

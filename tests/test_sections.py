@@ -158,6 +158,12 @@ static = true
     (lambda t: t + "[walls]\nright = 'sideways'\n", "right 'sideways' must be block, static or move"),
     (lambda t: t.replace('static = true\n[[block]]\nname = "k"\nslip = "a"', 'static = true\n[[block]]\nname = "k"\ntilt = 0.01'),
      "domino blocks (tilt) must be the last blocks"),
+    (lambda t: t.replace('thickness = 1500', 'thickness = 1500\n[[cover.unit]]\nname = "top"\nthickness = 1500'),
+     "unit 1 (top): no material file"),
+    (lambda t: t.replace('thickness = 1500', 'thickness = 1500\n[[cover.unit]]\nname = "top"\nthickness = 1000\n'
+                         'material = "potentials/cover_paper.params"'), "its units add up to 1000 m, not the cover's 1500 m"),
+    (lambda t: t.replace('thickness = 1500', 'thickness = 1500\n[[cover.unit]]\nname = "top"\nthickness = 1500\n'
+                         'material = "potentials/nosuch.params"'), "material file potentials/nosuch.params not found"),
 ])
 def test_bad_descriptions_name_the_problem(tmp_path, change, words):
     parse(GOOD, "good.toml")     # the base description is fine
@@ -184,3 +190,29 @@ def test_a_preset_that_cannot_pack_the_section_stops(tmp_path):
     assert r.returncode == 1
     assert "section fig7: preset tiny cannot pack it: salt 250 m" in r.stdout
     assert not list((tmp_path / "run").glob("dump.*"))
+
+
+def test_cover_units_take_their_types_and_materials(tmp_path):
+    """The pillow section: the top 750 m of the cover is the weak unit (type 4, its own material
+    file's coefficients; against the paper cover the weaker of each value), the rest type 1."""
+    d = write_deck(ROOT / "examples" / "sections" / "pillow.toml", tmp_path / "pillow.in")
+    r = run_deck(d, tmp_path / "run")
+    assert r.returncode == 0, r.stdout[-3000:]
+    first = sorted((tmp_path / "run").glob("dump.pillow.*.txt"), key=lambda p: int(p.name.split(".")[2]))[0]
+    lines = first.read_text().splitlines()
+    head = next(k for k, l in enumerate(lines) if l.startswith("ITEM: ATOMS"))
+    cols = lines[head].split()[2:]
+    a = np.array([[float(v) for v in l.split()] for l in lines[head + 1:]])
+    typ, y = a[:, cols.index("type")], a[:, cols.index("y")]
+    top = 600 + 1750
+    assert (typ == 4).sum() > 10 and (typ == 1).sum() > 10
+    # after settling the weak unit is the upper part of the cover
+    assert np.median(y[typ == 4]) > np.median(y[typ == 1])
+    assert y[typ == 4].min() > top - 750 - 300      # (settling moves discs by less than a disc)
+    coeffs = (tmp_path / "run" / "pillow.units.in").read_text()
+    weak = [l for l in coeffs.splitlines() if l.startswith("pair_coeff 4 4 ")][0].split()
+    cross = [l for l in coeffs.splitlines() if l.startswith("pair_coeff 1 4 ")][0].split()
+    assert float(weak[6]) == pytest.approx(0.3)          # mu of the weak unit
+    assert float(cross[6]) == pytest.approx(0.3)         # the weaker friction at the interface
+    assert float(weak[7]) == pytest.approx(7e7 * 100 / 6.25)   # cohesion x rscale_cover (tiny)
+    assert float(cross[7]) == pytest.approx(7e7 * 100 / 6.25)

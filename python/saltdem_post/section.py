@@ -11,6 +11,7 @@ frames, restart files and outcomes); docs/sections.md is the user's page.
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -60,6 +61,20 @@ class Block:
 
 
 @dataclass
+class Unit:
+    name: str
+    thickness: float
+    material: Path
+    density: Optional[float] = None
+    type: int = 1                        # 1: the deck's own cover material; 4, 5, ...: its own
+
+
+ROOT = Path(__file__).resolve().parents[2]
+DEFAULT_MATERIAL = ROOT / "potentials" / "cover_paper.params"
+MATERIAL_KEYS = ("kn", "kt", "mu", "coh", "ten", "rng", "zn", "zt", "kr", "mur")
+
+
+@dataclass
 class Section:
     name: str
     title: str
@@ -79,6 +94,7 @@ class Section:
     frames: Optional[list] = None
     source: str = ""
     extra_vars: dict = field(default_factory=dict)
+    units: list = field(default_factory=list)   # cover units, from the top down
 
 
 def _num(d: dict, key: str, where: str, default=None, positive=False):
@@ -143,8 +159,9 @@ def parse(text: str, source: str = "section") -> Section:
     cover_d = d.get("cover")
     if not isinstance(cover_d, dict):
         raise SectionError(f"{source}: the [cover] table is missing (give its thickness)")
-    _known(cover_d, {"thickness"}, f"{source} [cover]")
+    _known(cover_d, {"thickness", "unit"}, f"{source} [cover]")
     cover = _num(cover_d, "thickness", f"{source} [cover]", positive=True)
+    units = _units(cover_d.get("unit", []), cover, source)
 
     profile = None
     if "profile" in salt_d:
@@ -170,9 +187,9 @@ def parse(text: str, source: str = "section") -> Section:
                                f"lies outside the box (0 to {width:g} m)")
     if profile is None and "thickness" not in salt_d:
         raise SectionError(f"{source} [salt]: give its thickness or a profile")
+    # the nominal salt thickness (the box's height is it plus the cover): the layer's, or the
+    # profile's largest; a pillow rises into the cover
     salt = max(t for _, t in profile) if profile else _num(salt_d, "thickness", f"{source} [salt]", positive=True)
-    if pillow:
-        salt += pillow["height"]
 
     faults = []
     for k, fd in enumerate(d.get("fault", [])):
@@ -240,7 +257,7 @@ def parse(text: str, source: str = "section") -> Section:
         raise SectionError(f"{source}: two blocks share a name")
 
     s = Section(name=name, title=d.get("title", name), width=width, cover=cover, salt=salt,
-                faults=faults, blocks=blocks, profile=profile, pillow=pillow, source=source)
+                faults=faults, blocks=blocks, profile=profile, pillow=pillow, source=source, units=units)
     s.target = _num(d, "target", source, 1000.0, positive=True)
     if "rate" in d:
         s.rate = _num(d, "rate", source, positive=True)
@@ -267,6 +284,106 @@ def parse(text: str, source: str = "section") -> Section:
             raise SectionError(f"{source} block {b.name}: from {b.start:g} must come before its end")
     _place_blocks(s)
     return s
+
+
+def _units(items: list, cover: float, source: str) -> list:
+    """The cover's units, top first; each unit's material is a cover params file (the deck's
+    own, potentials/cover_paper.params, stays type 1; every other material gets a type)."""
+    units, types = [], {}
+    for k, u in enumerate(items):
+        where = f"{source} [cover] unit {k + 1}"
+        if not isinstance(u, dict):
+            raise SectionError(f"{where}: give name, thickness and material")
+        _known(u, {"name", "thickness", "material", "density"}, where)
+        name = u.get("name", f"unit{k + 1}")
+        if not str(name).replace("_", "").isalnum():
+            raise SectionError(f"{where}: name {name!r} must be letters, digits and _")
+        if "material" not in u:
+            raise SectionError(f"{where} ({name}): no material file: give material = "
+                               f"\"potentials/cover_paper.params\" or a calibrated file of your own")
+        m = Path(u["material"])
+        path = m if m.is_absolute() else (Path(source).resolve().parent / m)
+        if not path.is_file():
+            path = ROOT / m
+        if not path.is_file():
+            raise SectionError(f"{where} ({name}): material file {u['material']} not found "
+                               f"(looked beside the description and in the repository)")
+        unit = Unit(name, _num(u, "thickness", where, positive=True), path.resolve())
+        if "density" in u:
+            unit.density = _num(u, "density", where, positive=True)
+        if unit.material != DEFAULT_MATERIAL.resolve():
+            unit.type = types.setdefault(unit.material, 4 + len(types))
+        _material(unit.material, where)
+        units.append(unit)
+    if units and abs(sum(u.thickness for u in units) - cover) > 1e-6 * cover:
+        raise SectionError(f"{source} [cover]: its units add up to {sum(u.thickness for u in units):g} m, "
+                           f"not the cover's {cover:g} m")
+    if len({u.name for u in units}) != len(units):
+        raise SectionError(f"{source} [cover]: two units share a name")
+    return units
+
+
+def _material(path: Path, where: str) -> dict:
+    """NAME -> value text of a cover params file ('variable NAME_cover index VALUE')."""
+    vals = {}
+    for line in path.read_text().splitlines():
+        m = re.match(r"\s*variable\s+(\w+)_cover\s+index\s+(\S+)", line)
+        if m:
+            vals[m.group(1)] = m.group(2)
+    missing = [k for k in MATERIAL_KEYS if k not in vals]
+    if missing:
+        raise SectionError(f"{where}: material file {path.name} lacks {', '.join(k + '_cover' for k in missing)} "
+                           f"(a cover params file, as potentials/cover_paper.params)")
+    return vals
+
+
+def _unit_lines(s: Section) -> tuple:
+    """Deck lines: the unit materials' variables (top of the deck), the units' types and
+    densities (fresh runs, after assembly), and the pair coefficients file (before the laws)."""
+    own = sorted({u.type: u for u in s.units if u.type > 1}.items())
+    head, assign, coeffs = [], [], []
+    if not s.units:
+        return head, assign, coeffs
+    head.append(f"variable        extra_types index {2 + len(own)}")
+    for t, u in own:
+        head.append(f"# cover type {t}: {u.material.name}")
+        for k, v in _material(u.material, u.name).items():
+            if k not in MATERIAL_KEYS:
+                continue
+            v = re.sub(r"v_(\w+)_cover\b", lambda m: m.group(0) if m.group(1) == "rscale" else f"v_{m.group(1)}_u{t}", v)
+            head.append(f"variable        {k}_u{t} index {v}")
+    top = "v_H"
+    for k, u in enumerate(s.units):
+        low = f"{top}-{_fmt(u.thickness)}"
+        cond = f"y>=$({low})" if k < len(s.units) - 1 else "y>-1e30"
+        if k:
+            cond += f"&&y<$({top})"
+        assign += [f"variable        unit_{u.name} atom {cond}",
+                   f"group           unit_{u.name}_y variable unit_{u.name}",
+                   f"group           unit_{u.name} intersect unit_{u.name}_y cover",
+                   f"group           unit_{u.name}_y delete"]
+        if u.type > 1:
+            assign.append(f"set             group unit_{u.name} type {u.type}")
+        if u.density:
+            assign.append(f"set             group unit_{u.name} density/disc {_fmt(u.density)}")
+        top = low
+    if own:
+        # an interface is as weak (and as soft) as its weaker side: the smaller of each value
+        def pair(a, b):
+            ka = "cover" if a == 1 else f"u{a}"
+            kb = f"u{b}"
+            v = {k: (f"${{{k}_{kb}}}" if a == b else f"$(ternary(v_{k}_{ka}<v_{k}_{kb},v_{k}_{ka},v_{k}_{kb}))") for k in MATERIAL_KEYS}
+            return (f"pair_coeff {a} {b} saltdem/cohesive {v['kn']} {v['kt']} {v['mu']} {v['coh']} {v['ten']} "
+                    f"{v['rng']} damp {v['zn']} {v['zt']} rolling {v['kr']} {v['mur']}")
+        types = [t for t, _ in own]
+        for i, t in enumerate(types):
+            coeffs.append(pair(t, t))
+            coeffs.append(pair(1, t))
+            for t2 in types[i + 1:]:
+                coeffs.append(pair(t, t2))
+            coeffs.append(f"pair_coeff 2 {t} ${{unit_salt}}")
+            coeffs.append(f"pair_coeff {t} 3 saltdem/cohesive ${{kn_wall}} ${{kt_u{t}}} 1.0 ${{coh_u{t}}} 0 0")
+    return head, assign, coeffs
 
 
 def _place_blocks(s: Section):
@@ -320,7 +437,7 @@ def salt_top_formula(s: Section) -> Optional[str]:
             terms.append(f"(x>={x0:g})*(x<{x1:g})*({t0:g}+({t1 - t0:g})*(x-{x0:g})/{x1 - x0:g})")
         thick = "+".join(terms) + f"+(x>={s.profile[-1][0]:g})*{s.profile[-1][1]:g}"
     else:
-        thick = f"{s.salt - (s.pillow['height'] if s.pillow else 0):g}"
+        thick = f"{s.salt:g}"
     if s.pillow:
         p = s.pillow
         thick = (f"({thick})+{p['height'] / 2:g}*(1+cos(2*PI*(x-{p['x']:g})/{p['width']:g}))"
@@ -527,7 +644,8 @@ def deck(s: Section) -> str:
               'if "${preset} != tiny" then ' + " ".join(f'"{d}"' for d in drive)]
     for k, v in s.extra_vars.items():
         L.append(f"variable        {k} index {v}")
-    L += ["include         ${root}/examples/scene/params.in",
+    uhead, uassign, ucoeffs = _unit_lines(s)
+    L += ["include         ${root}/examples/scene/params.in"] + uhead + [
           "# the preset must resolve the section: two discs across salt and cover, ten along it",
           f'if "${{salt}} < $(2*v_rmax) || ${{cover}} < $(2*v_rmax) || ${{width}} < $(10*v_rmax)" then &',
           f"  \"print 'section {s.name}: preset ${{preset}} cannot pack it: salt ${{salt}} m, cover ${{cover}} m "
@@ -548,8 +666,10 @@ def deck(s: Section) -> str:
         if any(b.top != 0 for b in s.blocks):
             L += ["variable        has_basement index 1",
                   f'variable        basement string "y-radius<({base_top_formula(s)})"']
-    L += ["include         ${root}/examples/scene/assembly.in",
-          "",
+    L += ["include         ${root}/examples/scene/assembly.in"]
+    if uassign:
+        L += ["# the cover's units, top first"] + uassign
+    L += ["",
           "# ---- basement: wall discs (type 3), block by block ---------------------------------------------"]
     L += _walls(s)
     L += ["jump            SELF laws",
@@ -561,6 +681,18 @@ def deck(s: Section) -> str:
                  f"$(-cos({_fmt(s.tilt)}*PI/180)) 0")
     else:
         L.append("fix             grav pack gravity 9.81 vector 0 -1 0")
+    if ucoeffs:
+        if any(u.type > 1 for u in s.units):
+            L += ["# the cover units' own materials: their pair coefficients, which laws.in reads",
+                  'if "${endwall} != rough" then "print \'section: cover units take endwall rough\'" "quit 1"',
+                  'if "${saltlaw} == sph" then &',
+                  '  "variable unit_salt string \'saltdem/viscous ${eta} ${kn_cs} fluid $(1.3*sqrt(PI*v_r2salt/0.85)) ${K_salt}\'" &',
+                  'else "variable unit_salt string \'saltdem/viscous ${eta} ${kn_wall} contact 0\'"',
+                  'print           """']
+            L += ucoeffs
+            L += [f'""" file {s.name}.units.in screen no',
+                  "variable        has_laws_hook index 1",
+                  f"variable        laws_hook index {s.name}.units.in"]
     L += ["include         ${root}/examples/scene/laws.in",
           "",
           "# ---- the basement moves ---------------------------------------------------------------------"]

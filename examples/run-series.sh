@@ -35,7 +35,8 @@
 # restart files that matches its checksum (the older one if the newer is damaged).  LMP (default build/lmp) and
 # MPIRUN (e.g. "mpirun -np 8") choose how lmp runs; ONLY="NAME ..." runs only those runs of
 # the series (e.g. to split a series between cores: one run-series.sh per core, each with its
-# own ONLY list).
+# own ONLY list).  DECKS=1 runs the paper's scenes from examples/expt*.in instead of their section
+# descriptions (the same runs).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 series=${1:?usage: examples/run-series.sh expts|fig6|fig7|seeds|study|contact|fv|eta100|syntectonic|wedge|sections|gallery [full|medium|quick|tiny] [-- lmp args]}
@@ -134,8 +135,22 @@ pick_restart() {
   return 1
 }
 
+# The paper's scenes run from their section descriptions (examples/sections: the same
+# trajectories as examples/expt*.in, bit for bit); the study's variants and the sediment and
+# wedge decks use deck variables the sections do not have, and keep the decks.
+from_sections=1
+case $series in study|syntectonic|wedge) from_sections=0 ;; esac
+[ "${DECKS:-0}" = 1 ] && from_sections=0
+
 for r in "${runs[@]}"; do
   read -r name deck rate vars <<< "$r"
+  if [ "$from_sections" = 1 ]; then
+    case $deck in
+      expt1) if [[ " $vars " == *" -var dip 65 "* ]]; then deck=section:fig7; vars=${vars/-var dip 65/}
+             else deck=section:expt1; fi ;;
+      expt2|expt3) deck=section:$deck ;;
+    esac
+  fi
   [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]] && continue
   out="${OUT:-$root/out}/${series}_${preset}${msuffix}/$name"
   if [ -f "$out/done" ]; then echo "run-series: $name done already ($out)"; continue; fi
@@ -150,7 +165,10 @@ for r in "${runs[@]}"; do
     deckfile=$out/$deck.in
   fi
   echo "run-series: $name (${deckfile#"$root"/} -var rate $rate $vars ${resume[*]}) in $out"
-  echo "lmp -in ${deckfile#"$root"/} -var preset $preset -var rate $rate $vars" | tr -s ' ' > "$out/cmd.txt"
+  make=""
+  [ "$deckfile" = "$out/$deck.in" ] && make="python/saltdem-section examples/sections/$deck.toml -o $deck.in && "
+  lmpin=${deckfile#"$root"/}; [ -n "$make" ] && lmpin=$deck.in
+  echo "${make}lmp -in $lmpin -var preset $preset -var rate $rate $vars" | tr -s ' ' | sed 's/ $//' > "$out/cmd.txt"
   start=$(date +%s)
   # segment number from the segments' own output (a killed one left its stdout but no wall time)
   seg=$(( $(find "$out" -maxdepth 1 -name 'stdout.*.txt' | wc -l) + 1 ))    # log.lammps, log.2.lammps, ...
@@ -164,8 +182,10 @@ for r in "${runs[@]}"; do
   scene=fault; [ "$deck" = expt2 ] && scene=keystone; [ "$deck" = expt3 ] && scene=tilted
   if [ "$deckfile" = "$out/$deck.in" ]; then    # a section: its faults from its description
     read -r -a fx <<< "$("$py" "$root/python/saltdem-section" "$root/examples/sections/$deck.toml" --faults)"
-    faults=(); scene=tilted
-    [ ${#fx[@]} -gt 0 ] && { faults=(--fault-x "${fx[@]}"); scene=fault; }
+    faults=(--types "$("$py" "$root/python/saltdem-section" "$root/examples/sections/$deck.toml" --types)")
+    scene=tilted
+    [ ${#fx[@]} -gt 0 ] && { faults+=(--fault-x "${fx[@]}"); scene=fault; }
+    [ "$deck" = expt2 ] && scene=keystone
   fi
   # the wedge: no basement fault (measured as a scene without one), its stages are the front's
   # migration, the incremental strain over 250 m of it

@@ -130,7 +130,8 @@ def test_damaged_restart_is_refused_naming_the_other_file(partial, tmp_path, kin
 def series(out, *extra, env_extra=None, timeout=600, popen=False):
     cmd = ["bash", str(ROOT / "examples" / "run-series.sh"), "expts", "tiny", "--",
            "-var", "restart_disp", str(VARS["restart_disp"]), *extra]
-    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), OUT=str(out), ONLY="expt1",
+    # DECKS=1: from examples/expt1.in, the deck the partial runs were made with
+    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), OUT=str(out), ONLY="expt1", DECKS="1",
                **(env_extra or {}))
     if popen:
         return subprocess.Popen(cmd, cwd=out, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,

@@ -163,7 +163,8 @@ def test_series_runner_fig7(tmp_path):
         assert f"salt {salt} m" in (d / "stdout.1.txt").read_text()
         assert (d / "figures" / f"fig7_salt{salt}.png").stat().st_size > 10000
         assert (d / "cmd.txt").read_text().strip() == \
-            f"lmp -in examples/expt1.in -var preset tiny -var rate 0.05 -var dip 65 -var salt {salt}"
+            ("python/saltdem-section examples/sections/fig7.toml -o fig7.in && "
+             f"lmp -in fig7.in -var preset tiny -var rate 0.05 -var salt {salt}")
 
 
 def test_series_runner_contact_only_list(tmp_path):
@@ -175,10 +176,10 @@ def test_series_runner_contact_only_list(tmp_path):
                        cwd=tmp_path, capture_output=True, text=True, timeout=600, env=env)
     assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
     assert sorted(p.name for p in series.iterdir()) == ["expt3_contact", "fig7_salt250_contact"]
-    for name, deck in (("fig7_salt250_contact", "expt1"), ("expt3_contact", "expt3")):
+    for name, deck in (("fig7_salt250_contact", "fig7"), ("expt3_contact", "expt3")):
         d = series / name
         assert "-var saltlaw contact" in (d / "cmd.txt").read_text()
-        assert f"examples/{deck}.in" in (d / "cmd.txt").read_text()
+        assert f"examples/sections/{deck}.toml" in (d / "cmd.txt").read_text()
         assert (d / "done").exists() and (d / "outcomes" / "outcomes.json").exists()
         assert "scene: salt law contact" in (d / "stdout.1.txt").read_text()
 

@@ -186,9 +186,9 @@ def test_not_toml_is_a_clear_error(tmp_path):
 
 def test_a_preset_that_cannot_pack_the_section_stops(tmp_path):
     d = write_deck(ROOT / "examples" / "sections" / "fig7.toml", tmp_path / "fig7.in")
-    r = run_deck(d, tmp_path / "run", "-var", "salt", "250")
+    r = run_deck(d, tmp_path / "run", "-var", "salt", "200")
     assert r.returncode == 1
-    assert "section fig7: preset tiny cannot pack it: salt 250 m" in r.stdout
+    assert "section fig7: preset tiny cannot pack it: salt 200 m" in r.stdout
     assert not list((tmp_path / "run").glob("dump.*"))
 
 
@@ -216,3 +216,16 @@ def test_cover_units_take_their_types_and_materials(tmp_path):
     assert float(cross[6]) == pytest.approx(0.3)         # the weaker friction at the interface
     assert float(weak[7]) == pytest.approx(7e7 * 100 / 6.25)   # cohesion x rscale_cover (tiny)
     assert float(cross[7]) == pytest.approx(7e7 * 100 / 6.25)
+
+
+def test_a_restart_file_of_another_deck_is_refused(tmp_path):
+    """expt1.in's restart file holds the drive of its fix 'fault'; the section deck's motion fix
+    is 'blocks': resuming it there would start the drive again, so the deck stops."""
+    wd = tmp_path / "run"
+    r = run_deck(ROOT / "examples" / "expt1.in", wd, "-var", "restart_disp", "0.5")
+    assert r.returncode == 0, r.stdout[-2000:]
+    newest = max(wd.glob("expt1.restart.[ab]"), key=lambda p: p.stat().st_mtime)
+    d = write_deck(ROOT / "examples" / "sections" / "expt1.toml", tmp_path / "s.in")
+    r = run_deck(d, wd, "-var", "restart", newest.name)
+    assert r.returncode == 1
+    assert "holds no drive displacement for this deck's motion fix" in r.stdout

@@ -646,10 +646,10 @@ def deck(s: Section) -> str:
         L.append(f"variable        {k} index {v}")
     uhead, uassign, ucoeffs = _unit_lines(s)
     L += ["include         ${root}/examples/scene/params.in"] + uhead + [
-          "# the preset must resolve the section: two discs across salt and cover, ten along it",
-          f'if "${{salt}} < $(2*v_rmax) || ${{cover}} < $(2*v_rmax) || ${{width}} < $(10*v_rmax)" then &',
+          "# the preset must resolve the section: a disc radius across salt and cover, ten along it",
+          f'if "${{salt}} < ${{rmax}} || ${{cover}} < ${{rmax}} || ${{width}} < $(10*v_rmax)" then &',
           f"  \"print 'section {s.name}: preset ${{preset}} cannot pack it: salt ${{salt}} m, cover ${{cover}} m "
-          f"and width ${{width}} m need 2, 2 and 10 of its largest discs (radius ${{rmax}} m); use a finer "
+          f"and width ${{width}} m need 1, 1 and 10 radii of its largest discs (${{rmax}} m); use a finer "
           f"preset'\" \"quit 1\"",
           "",
           "# the box leaves room for the blocks to travel the target displacement",

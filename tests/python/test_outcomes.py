@@ -224,6 +224,22 @@ def test_thin_salt_minimum_and_weld():
     assert w["total_width_m"] == pytest.approx(300.0, abs=2 * r["salt"]["bin_width_m"])
 
 
+def test_salt_body_pinch_out_and_crest():
+    """A pinch-out: no salt left of 600 m; a crest: the salt right of 2 km thinned to 100 m.
+    The body's extent starts at the pinch-out, its thickest column lies in 0.6-2 km; a change
+    of either moves the reading (so the test can fail)."""
+    ref = reference_scene(SPEC)
+    body = thinned(thinned(ref, -1e9, 600.0, -1.0), 2000.0, 1e9, 100.0)
+    b = outcomes_of(body, body, fault_x=[1000.0])["salt"]["body"]
+    bw = outcomes_of(body, body, fault_x=[1000.0])["salt"]["bin_width_m"]
+    assert b["extent_m"][0] == pytest.approx(600.0, abs=bw)
+    assert 600.0 - bw < b["x_max_m"] < 2000.0 + bw
+    assert b["max_thickness_m"] == pytest.approx(SPEC.salt_thickness, abs=60.0)
+    wider = thinned(ref, -1e9, 300.0, -1.0)
+    assert outcomes_of(wider, wider, fault_x=[1000.0])["salt"]["body"]["extent_m"][0] == \
+        pytest.approx(300.0, abs=bw)
+
+
 def salt_band_scene(profile_left, profile_right, fault_x=1500.0):
     """Salt displaced horizontally by u(eta), eta = y / salt thickness:
     ``profile_left`` left of ``fault_x``, ``profile_right`` right of it."""

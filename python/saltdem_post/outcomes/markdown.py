@@ -69,6 +69,14 @@ def _wall_text(w: Optional[dict]) -> str:
             f"edge drop {_m(w['edge_drop_m'], True)}" + (f" ({', '.join(flags)})" if flags else ""))
 
 
+def _body_text(body) -> str:
+    if not body or body["max_thickness_m"] is None:
+        return "–"
+    ext = body["extent_m"]
+    where = f"{_km(ext[0])}-{_km(ext[1])}" if ext else "none"
+    return f"{body['max_thickness_m']:.0f} m at {_km(body['x_max_m'])} / {where}"
+
+
 def _flow_text(reg: dict) -> str:
     if not reg["n_bands"]:
         return "–"
@@ -79,6 +87,7 @@ def _summary_rows(results: Sequence[dict]) -> List[Tuple[str, List[str]]]:
     rows = [
         ("frame (step)", [f"{r['frame']} ({r['timestep']})" for r in results]),
         ("min. salt thickness", [_minimum_text(r["salt"]["minimum"]) for r in results]),
+        ("salt body: thickest / extent", [_body_text(r["salt"].get("body")) for r in results]),
         ("min. vs fault tip / footwall edge", [_relative_text(r["salt"]["minimum"]) for r in results]),
         ("welds (< 1 salt disc)", [_weld_text(r["salt"]["welds"]) for r in results]),
         ("salt-cover interface relief", [_interface_text(r["interface"]) for r in results]),

@@ -136,10 +136,10 @@ pick_restart() {
 }
 
 # The paper's scenes run from their section descriptions (examples/sections: the same
-# trajectories as examples/expt*.in, bit for bit); the study's variants and the sediment and
-# wedge decks use deck variables the sections do not have, and keep the decks.
+# trajectories as examples/expt*.in and wedge.in, bit for bit); the study's variants and the
+# syntectonic series use deck variables the sections do not have, and keep the decks.
 from_sections=1
-case $series in study|syntectonic|wedge) from_sections=0 ;; esac
+case $series in study|syntectonic) from_sections=0 ;; esac
 [ "${DECKS:-0}" = 1 ] && from_sections=0
 
 for r in "${runs[@]}"; do
@@ -148,7 +148,7 @@ for r in "${runs[@]}"; do
     case $deck in
       expt1) if [[ " $vars " == *" -var dip 65 "* ]]; then deck=section:fig7; vars=${vars/-var dip 65/}
              else deck=section:expt1; fi ;;
-      expt2|expt3) deck=section:$deck ;;
+      expt2|expt3|wedge) deck=section:$deck ;;
     esac
   fi
   [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]] && continue

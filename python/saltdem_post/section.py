@@ -95,6 +95,9 @@ class Section:
     source: str = ""
     extra_vars: dict = field(default_factory=dict)
     units: list = field(default_factory=list)   # cover units, from the top down
+    wedge: Optional[dict] = None         # a prograding sediment wedge: the drive is its front
+    tiny: dict = field(default_factory=dict)    # variables at the tiny preset only
+    restart_every: Optional[float] = None
 
 
 def _num(d: dict, key: str, where: str, default=None, positive=False):
@@ -147,7 +150,7 @@ def parse(text: str, source: str = "section") -> Section:
     except tomllib.TOMLDecodeError as e:
         raise SectionError(f"{source}: not a valid description: {e}") from None
     _known(d, {"name", "title", "width", "target", "rate", "tilt", "frames", "salt", "cover",
-               "fault", "block", "walls", "vars"}, source)
+               "fault", "block", "walls", "vars", "wedge", "tiny", "restart_every"}, source)
     name = d.get("name") or Path(source).stem
     if not isinstance(name, str) or not name.replace("_", "").isalnum():
         raise SectionError(f"{source}: name {name!r} must be letters, digits and _ (it names the frames)")
@@ -277,6 +280,23 @@ def parse(text: str, source: str = "section") -> Section:
     if "frames" in d:
         s.frames = [float(v) for v in d["frames"]]
     s.extra_vars = dict(d.get("vars", {}))
+    s.tiny = dict(d.get("tiny", {}))
+    if "restart_every" in d:
+        s.restart_every = _num(d, "restart_every", source, positive=True)
+    if "wedge" in d:
+        w = d["wedge"]
+        where = f"{source} [wedge]"
+        _known(w, {"front0", "rate", "load", "foreset_dip", "every"}, where)
+        s.wedge = {"front0": _num(w, "front0", where, 0.0), "rate": _num(w, "rate", where, positive=True),
+                   "load": _num(w, "load", where, positive=True),
+                   "foreset_dip": _num(w, "foreset_dip", where, positive=True),
+                   "every": _num(w, "every", where, positive=True)}
+        if s.rate is not None:
+            raise SectionError(f"{where}: the drive of a wedge is its front: give its rate here, not 'rate'")
+        if not 0 <= s.wedge["front0"] < width:
+            raise SectionError(f"{where}: front0 {s.wedge['front0']:g} lies outside the box (0 to {width:g} m)")
+        if any(not b.static for b in blocks) or s.right_wall == "move":
+            raise SectionError(f"{where}: a wedge section's basement is static (its drive is the front)")
     for b in blocks:
         if b.stop is not None and b.stop > s.target:
             raise SectionError(f"{source} block {b.name}: to {b.stop:g} is beyond the target {s.target:g} m")
@@ -460,6 +480,7 @@ def _fmt(v: float) -> str:
 def _walls(s: Section) -> list:
     """saltdem/wall commands, block by block, in the order the paper's decks lay them."""
     lines = []
+    wtop = "${wtop}" if s.wedge else "$(v_H+v_salt)"     # a wedge's walls reach above its load
     n = len(s.blocks)
     travel = f"v_target*{_fmt(max([1.0, _domino_slip(s)] + [abs(b.scale) for b in s.blocks]))}"
     for k, b in enumerate(s.blocks):
@@ -485,13 +506,13 @@ def _walls(s: Section) -> list:
         lines.append(f"saltdem/wall    3 {x0} {y} {x1} {y} ${{rw}} group {g}")
         if k == 0:
             lw = g if s.left_wall == "block" else "wall_left"
-            lines.append(f"saltdem/wall    3 $(-v_rw) $({_fmt(b.top)}+v_rw) $(-v_rw) $(v_H+v_salt) ${{rw}} group {lw}")
+            lines.append(f"saltdem/wall    3 $(-v_rw) $({_fmt(b.top)}+v_rw) $(-v_rw) {wtop} ${{rw}} group {lw}")
         if k == n - 1 and s.right_wall == "block" and b.tilt:
             lines.append(f"saltdem/wall    3 $(v_width+v_rw) $({_fmt(b.top)}+v_rw) $(v_width+v_rw) "
-                         f"$(v_H+v_salt) ${{rw}} group wall_right")
+                         f"{wtop} ${{rw}} group wall_right")
         elif k == n - 1 and s.right_wall == "block":
             lines.append(f"saltdem/wall    3 $(v_width+v_rw) $({_fmt(b.top)}+v_rw) $(v_width+v_rw) "
-                         f"$(v_H+v_salt) ${{rw}} group {g}")
+                         f"{wtop} ${{rw}} group {g}")
         # the face it exposes: the footwall lines its fault face from its top down-dip
         for f, side in ((fl, "left"), (fr, "right")):
             if f is None:
@@ -596,13 +617,13 @@ def deck(s: Section) -> str:
     faults = {f.name: f for f in s.faults}
     moving = [b.name for b in s.blocks if not b.static] + (
         ["wall_right"] if s.right_wall == "move" or s.blocks[-1].tilt else [])
-    if not moving:
-        raise SectionError(f"{s.source}: nothing moves: give a block (or the right wall) kinematics")
+    if not moving and not s.wedge:
+        raise SectionError(f"{s.source}: nothing moves: give a block (or the right wall) kinematics, or a [wedge]")
     # the room the blocks travel into: the fastest block's travel, toward each side it goes
     vel = [b.velocity(faults) for b in s.blocks if not b.static and not b.tilt]
     if s.right_wall == "move":
         vel.append(tuple(v * 1.0 for v in s.right_move))
-    speed = max([0.0] + [math.hypot(*v) for v in vel])
+    speed = max([1.0 if not moving else 0.0] + [math.hypot(*v) for v in vel])
     for b in s.blocks:
         if b.tilt:       # a domino block: its crest moves right, its far side turns
             reach = max(b.right - b.left, s.cover + s.salt)
@@ -628,19 +649,33 @@ def deck(s: Section) -> str:
          + "--at 100 250 500 750 1000",
          "",
          "variable        root        index .",
+         ] + (["variable        preset      index full",
+               'if "${preset} == tiny" then ' + " ".join(f'"variable {k} index {v}"' for k, v in s.tiny.items())]
+              if s.tiny else []) + [
          f"variable        width       index {_fmt(s.width)}",
          f"variable        salt        index {_fmt(s.salt)}",
          f"variable        cover       index {_fmt(s.cover)}"]
     # the section's drive, except at the tiny preset (its smoke-test drive: 2 m at 2 m/s)
     drive = []
+    if s.wedge:
+        w = s.wedge
+        L += [f"variable        front0      index {_fmt(w['front0'])}",
+              f"variable        front_rate  index {_fmt(w['rate'])}",
+              f"variable        load        index {_fmt(w['load'])}",
+              f"variable        foreset_dip index {_fmt(w['foreset_dip'])}"]
+        drive.append("variable rate index ${front_rate}")
     if s.target != 1000.0:
         drive.append(f"variable target index {_fmt(s.target)}")
     if s.rate is not None:
         drive.append(f"variable rate index {_fmt(s.rate)}")
     if s.frames:
         drive.append(f"variable f index {' '.join(_fmt(v) for v in s.frames)}")
+    if s.restart_every:
+        drive.append(f"variable restart_disp index {_fmt(s.restart_every)}")
+    if s.wedge:
+        drive.append(f"variable sed_every index {_fmt(s.wedge['every'])}")
     if drive:
-        L += ["variable        preset      index full",
+        L += (["variable        preset      index full"] if not s.tiny else []) + [
               'if "${preset} != tiny" then ' + " ".join(f'"{d}"' for d in drive)]
     for k, v in s.extra_vars.items():
         L.append(f"variable        {k} index {v}")
@@ -654,11 +689,15 @@ def deck(s: Section) -> str:
           "",
           "# the box leaves room for the blocks to travel the target displacement",
           f"variable        bxlo equal -3*${{rmax}}-{left_x}",
-          f"variable        bxhi equal ${{width}}+3*${{rmax}}+{right_x}",
-          (f"variable        bylo equal -{down}-6*${{rmax}}" if down != "0"
-           else "variable        bylo equal -3*${rmax}"),
-          "variable        byhi equal 1.5*(${salt}+${cover})",
-          'if "${resuming}" then "jump SELF resume"']
+          f"variable        bxhi equal ${{width}}+3*${{rmax}}+{right_x}"]
+    if s.wedge:     # room above for the load and the salt it expels
+        L += ["variable        bylo equal -6*${rmax}",
+              "variable        byhi equal ${salt}+${cover}+${load}+${salt}+6*${rmax}"]
+    else:
+        L += [(f"variable        bylo equal -{down}-6*${{rmax}}" if down != "0"
+               else "variable        bylo equal -3*${rmax}"),
+              "variable        byhi equal 1.5*(${salt}+${cover})"]
+    L += ['if "${resuming}" then "jump SELF resume"']
     if sf is not None:
         L += ["# the salt body, and the basement discs under the blocks' tops (deleted)",
               "variable        has_saltbody index 1",
@@ -669,6 +708,8 @@ def deck(s: Section) -> str:
     L += ["include         ${root}/examples/scene/assembly.in"]
     if uassign:
         L += ["# the cover's units, top first"] + uassign
+    if s.wedge:
+        L.append("variable        wtop equal ${H}+${load}+${salt}")
     L += ["",
           "# ---- basement: wall discs (type 3), block by block ---------------------------------------------"]
     L += _walls(s)
@@ -693,9 +734,26 @@ def deck(s: Section) -> str:
             L += [f'""" file {s.name}.units.in screen no',
                   "variable        has_laws_hook index 1",
                   f"variable        laws_hook index {s.name}.units.in"]
-    L += ["include         ${root}/examples/scene/laws.in",
-          "",
-          "# ---- the basement moves ---------------------------------------------------------------------"]
+    L += ["include         ${root}/examples/scene/laws.in", ""]
+    if s.wedge:
+        L += ["# ---- the front: migration starts after the settling (model time 0 from here) ---------------",
+              'if "${resuming} == 0" then "reset_timestep 0 time 0"',
+              "variable        disp equal ${rate}*time",
+              "variable        front equal ${front0}+v_disp",
+              f"variable        name index {s.name}",
+              'variable        progress index "v_front"',
+              "# sedimentation behind the front: fill to the base level from the box's left end to the",
+              "# front, and a foreset ahead of it",
+              "variable        sediment index fill",
+              "variable        base_level index $(v_H+v_load)",
+              "variable        sed_xlo index $(v_bxlo)",
+              "variable        sed_xhi index v_front",
+              "variable        sed_foreset index $(tan(v_foreset_dip*PI/180))",
+              "include         ${root}/examples/scene/sediment.in",
+              "include         ${root}/examples/scene/frames.in",
+              ""]
+        return "\n".join(L)
+    L += ["# ---- the basement moves ---------------------------------------------------------------------"]
     if len(moving) > 1:
         L.append(f"group           moving union {' '.join(moving)}")
         grp = "moving"

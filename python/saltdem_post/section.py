@@ -524,7 +524,11 @@ def _walls(s: Section) -> list:
             # the face starts a disc inside the footwall's corner and runs down-dip
             back, down = ("-", "+") if f.toward == "right" else ("+", "-")
             top = _fmt(b.top)
-            lface = f"({travel}+2*v_dw+{top})"
+            other = s.blocks[k + 1] if side == "right" else s.blocks[k - 1]
+            if b.static and other.static:     # a static step: lined down to the lower block
+                lface = f"(2*v_dw+{_fmt(b.top - other.top)})"
+            else:
+                lface = f"({travel}+2*v_dw+{top})"
             lines.append(f"saltdem/wall    3 $({_fmt(f.x)}{back}v_rw*{sd}) $({top}-v_rw*{cd}) "
                          f"$({_fmt(f.x)}{back}v_rw*{sd}{down}{lface}*{cd}) $({top}-v_rw*{cd}-{lface}*{sd}) "
                          f"${{rw}} group {g}")

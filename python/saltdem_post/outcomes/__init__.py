@@ -20,7 +20,7 @@ salt top) and the frame one increment earlier (incremental strain):
 
 ``frame_outcomes`` returns a JSON-ready dict; ``outcomes_markdown`` turns a
 list of them into tables for the docs.  Methods and thresholds:
-docs/postprocessing.md, "Outcomes".
+docs/outcomes.md.
 """
 
 from .bands import (MAX_BANDS_PER_CLUSTER, Band, connected_clusters, detect_bands, extract_lines, fit_band_line,

@@ -17,7 +17,8 @@ import saltdem_post
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 PYDIR = REPO / "python"
-WRAPPERS = {"saltdem-post": "usage: saltdem-post", "saltdem-calibrate": "usage: saltdem-calibrate"}
+WRAPPERS = {"saltdem-post": "usage: saltdem-post", "saltdem-calibrate": "usage: saltdem-calibrate",
+            "saltdem-section": "usage: saltdem-section"}
 
 
 def clean_env(**extra):

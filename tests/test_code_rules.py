@@ -259,9 +259,9 @@ def broken_links(page):
 
 def test_docs_links_resolve():
     """Every relative link and image of the markdown docs points at a file that exists, and at a
-    heading of it where it names one.  docs/gallery/intro.md and beyond.md are parts of
+    heading of it where it names one.  docs/gallery/intro.md is a part of
     docs/gallery.md (tools/docs/gallery_page.py puts them there) and use its links."""
-    parts = {"intro.md", "beyond.md"}
+    parts = {"intro.md"}
     pages = [p for p in ROOT.glob("docs/**/*.md") if not (p.parent.name == "gallery" and p.name in parts)]
     pages += [ROOT / "README.md", ROOT / "examples" / "README.md", *ROOT.glob("bench/**/README.md")]
     assert len(pages) > 10

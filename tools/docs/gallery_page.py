@@ -5,7 +5,7 @@ Docs-building code, kept out of the installed package (python/saltdem_post).  Fr
 repository root:
 
   /usr/bin/python3 tools/docs/gallery_page.py out/gallery_quick/* out/gallery_full/expt1_full \
-      --notes docs/gallery/notes.md --intro docs/gallery/intro.md --append docs/gallery/beyond.md
+      --notes docs/gallery/notes.md --intro docs/gallery/intro.md
 
 For each run directory (``examples/run-series.sh`` layout: ``figures/NAME.png``,
 ``outcomes/outcomes.{md,json}``, ``wall.txt``, ``cmd.txt`` or the series' own record) the page
@@ -246,7 +246,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     ap.add_argument("--img", default=None, help="figure copies (default: img/gallery beside the page)")
     ap.add_argument("--notes", help="notes file: '## NAME' sections, one '- ' line per paper statement")
     ap.add_argument("--intro", help="a markdown file put at the top of the page")
-    ap.add_argument("--append", help="a markdown file put at the end of the page (docs/gallery/beyond.md)")
+    ap.add_argument("--append", help="a markdown file put at the end of the page")
     ap.add_argument("--splice", action="store_true",
                     help="replace only these runs' rows and sections in the existing pages")
     a = ap.parse_args(argv)

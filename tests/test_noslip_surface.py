@@ -1,5 +1,5 @@
 """The no-slip boundary at the surface of the boundary discs (pair_style saltdem/viscous
-keyword noslip surface; docs/pair_saltdem_viscous.rst, docs/validation.md 4.4).
+keyword noslip surface; docs/pair_saltdem_viscous.rst, docs/salt-validation.md 4.4).
 
 A static wall particle enters the Morris viscosity at its own velocity, which holds the fluid
 still at the particle's centre: on a line of wall discs the salt's no-slip plane lies near the

@@ -16,7 +16,7 @@ the base slipped 5-14 m (kn_wall 0: the salt sank into the line).
   film       u_s / analytic within 10 % for a 365 m film at both resolutions (measured here, 400
              m wide, 120 s: 0.98-1.02 fine, 0.941 coarse).  The 190 m film at this size is
              not held: it scattered 1.09-1.26 (fine) and gave 0.919 (coarse); the channel
-             flows' 1 % is not reached (docs/validation.md 4.4)
+             flows' 1 % is not reached (docs/salt-validation.md 4.4)
   rho0       the reference density is that of the film's interior, not the mean of all its
              particles (2-4 % below it)
   core       a fluid-boundary pair without an elastic core (kn 0) is refused, with or without

@@ -463,7 +463,7 @@ double PairSaltdemViscous::init_one(int i, int j)
 {
   const double cut = PairSaltdem::init_one(i, j);
   // a fluid that a boundary holds by its mirrored pressure alone sinks into a line of wall
-  // discs and slips on it (docs/validation.md 4.4: 4 m deep, slip length 14 m), and with the
+  // discs and slips on it (docs/salt-validation.md 4.4: 4 m deep, slip length 14 m), and with the
   // fill it still leaks through in time (a disc after 1300 s of a 190 m film): refused
   const auto &p = params[i][j];
   if (p.mode == SaltDEM::VISCOUS_FLUID && p.kn == 0.0 && isfluid[i] != isfluid[j] &&

@@ -250,7 +250,7 @@ namespace SaltDEM {
    centroid c / ws (c = sum_f mu_f W_f (x_f - x_b)), which lies dist = |c| / ws - R beyond the
    surface along c.  A linear shear flow then sees a continuous velocity across the surface;
    a plain static particle holds the fluid still at its centre, R below the surface
-   (docs/validation.md 4.4).  a is capped at NOSLIP_MAX (the fluid crowding the surface: a
+   (docs/salt-validation.md 4.4).  a is capped at NOSLIP_MAX (the fluid crowding the surface: a
    mirror velocity larger than the fluid's own); with no side to the fluid (dist <= 0: a disc
    inside the fluid) a ramps to 0.  Writes the offset o = v_eff - vb. */
   constexpr double NOSLIP_MAX = 1.0;

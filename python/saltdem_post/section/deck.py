@@ -6,7 +6,7 @@ import re
 from pathlib import Path
 
 from .describe import material_values
-from .geometry import block_args, fmt, wall_lines, base_top_formula, salt_top_formula
+from .geometry import block_args, face_depths, fmt, wall_lines, base_top_formula, salt_top_formula
 from .model import MATERIAL_KEYS, Section, SectionError
 
 
@@ -141,7 +141,11 @@ def deck(s: Section) -> str:
         L += ["variable        bylo equal -6*${rmax}",
               "variable        byhi equal ${salt}+${cover}+${load}+${salt}+6*${rmax}"]
     else:
-        L += [(f"variable        bylo equal -{down}-6*${{rmax}}" if down != "0"
+        deep = down
+        for d in face_depths(s):     # a moving block's fault face may reach deeper (3 rmax margin)
+            d = f"{d}-3*${{rmax}}"
+            deep = f"ternary(({d})>({deep}),({d}),({deep}))"
+        L += [(f"variable        bylo equal -{deep}-6*${{rmax}}" if deep != "0"
                else "variable        bylo equal -3*${rmax}"),
               "variable        byhi equal 1.5*(${salt}+${cover})"]
     L += ['if "${resuming}" then "jump SELF resume"']

@@ -38,6 +38,27 @@ def fmt(v: float) -> str:
     return f"{v:.12g}"
 
 
+def face_depths(s: Section) -> list:
+    """How far below the lowest block's top each moving block's fault face reaches at the end of
+    the drive (deck expressions in target and rmin, for the box): its lining plus the block's
+    descent.  (The lining of wall_lines(); rmin is the wall discs' radius.)"""
+    faults = {f.name: f for f in s.faults}
+    scale = fmt(max([1.0, _domino_slip(s)] + [abs(b.scale) for b in s.blocks]))
+    out = []
+    n = len(s.blocks)
+    for k, b in enumerate(s.blocks):
+        if b.static:
+            continue
+        down = max(0.0, -b.velocity(faults)[1]) if not b.tilt else 0.0
+        for f, side in ((s.faults[k - 1] if k else None, "left"), (s.faults[k] if k < n - 1 else None, "right")):
+            if f is None or not ((side == "right") == (f.toward == "right")):
+                continue
+            lface = f"(${{target}}*{scale}+4*${{rmin}}+{fmt(b.top)})"
+            out.append(f"{lface}*sin({fmt(f.dip)}*PI/180)+${{rmin}}*cos({fmt(f.dip)}*PI/180)-{fmt(b.top)}"
+                       f"+${{target}}*{fmt(down)}")
+    return out
+
+
 def wall_lines(s: Section) -> list:
     """saltdem/wall commands, block by block, in the order the paper's decks lay them."""
     lines = []

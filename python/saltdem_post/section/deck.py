@@ -6,7 +6,8 @@ import re
 from pathlib import Path
 
 from .describe import material_values
-from .geometry import block_args, face_depths, fmt, wall_lines, base_top_formula, salt_top_formula
+from .geometry import (block_args, base_top_formula, domino_extension, face_depths, fmt, salt_top_formula,
+                       wall_lines)
 from .model import MATERIAL_KEYS, Section, SectionError
 
 
@@ -81,6 +82,9 @@ def deck(s: Section) -> str:
     travel = f"${{target}}*{fmt(speed)}"
     rot = any(b.rotate or b.tilt for b in s.blocks)
     right_x = travel if rot or any(v[0] > 0 for v in vel) else "0"
+    ext = domino_extension(s)
+    if ext != "0":     # the domino crests move right faster than the turn's speed bound says
+        right_x = f"ternary(({ext})>({right_x}),({ext}),({right_x}))"
     left_x = travel if rot or any(v[0] < 0 for v in vel) else "0"
     down = travel if rot or any(v[1] < 0 for v in vel) else "0"
     sf = salt_top_formula(s)

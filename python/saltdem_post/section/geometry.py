@@ -122,6 +122,28 @@ def wall_lines(s: Section) -> list:
 DOMINO_PHASES = 20
 
 
+def _domino_crest_shift(s: Section, dom: list, k: int, th: str) -> str:
+    """e_k(theta): how far domino block k's crest has moved right at the turn th (an expression
+    in radians); k indexes dom, the domino blocks left to right."""
+    first = s.blocks.index(dom[0])
+    dip = s.faults[first - 1].dip
+    terms = []
+    for m in range(k + 1):
+        L = fmt(dom[m].right - dom[m].left)
+        deff = f"({fmt(dip)}*PI/180)" if m == 0 else f"({fmt(dip)}*PI/180-{th})"
+        terms.append(f"{L}*(cos({th})-1+sin({th})*cos({deff})/sin({deff}))")
+    return "+".join(terms)
+
+
+def domino_extension(s: Section) -> str:
+    """The last domino crest's shift at the end of the drive (a deck expression in target), the
+    room the box needs on the right; '0' without domino blocks."""
+    dom = [b for b in s.blocks if b.tilt]
+    if not dom:
+        return "0"
+    return _domino_crest_shift(s, dom, len(dom) - 1, f"({fmt(dom[0].tilt)}*PI/180*${{target}})")
+
+
 def _domino_args(s: Section) -> list:
     """Bookshelf (domino) blocks: each turns counterclockwise by theta about its crest (its top
     right corner, which stays at the basement top) and moves right by e_k(theta), so that its
@@ -129,19 +151,11 @@ def _domino_args(s: Section) -> list:
     turned by theta for the others).  The exact path, cut into DOMINO_PHASES phases of equal
     turn, each exact at its ends (a turn about the moving crest and a uniform translation)."""
     dom = [b for b in s.blocks if b.tilt]
-    first = s.blocks.index(dom[0])
-    dip = s.faults[first - 1].dip
     w = dom[0].tilt
     n = DOMINO_PHASES
 
     def e(k, th):                      # k: index into dom; th: an expression in radians
-        terms = []
-        for m in range(k + 1):
-            b = dom[m]
-            L = fmt(b.right - b.left)
-            deff = f"({fmt(dip)}*PI/180)" if m == 0 else f"({fmt(dip)}*PI/180-{th})"
-            terms.append(f"{L}*(cos({th})-1+sin({th})*cos({deff})/sin({deff}))")
-        return "+".join(terms)
+        return _domino_crest_shift(s, dom, k, th)
 
     out = []
     for j in range(n):

@@ -263,6 +263,17 @@ def test_bad_input_names_the_problem(lmp, fix, words):
     assert_error(r, *words)
 
 
+@pytest.mark.parametrize("fix", [
+    "fix bl moving saltdem/blocks rate 20 target 25 block a move 5 0 block b move 1 0 block c move 1 0",
+    "fix bl moving saltdem/blocks rate 20 target 25 block a move 1 0 block b move 1 0 block c rotate 20 60 7",
+])
+def test_a_motion_out_of_the_box_is_refused(lmp, fix):
+    """Block a would cross x = 100 at the target (move 5: -3 + 125); block c, turned by 175
+    degrees about (20, 60), would cross y = 100.  Refused before the first step."""
+    r = lmp(SETUP + fix + "\ntimestep 0.1\nrun 1\n", extra="")
+    assert_error(r, "the motion to the target 25 m takes wall discs out of the box")
+
+
 def test_fast_turn_warns_of_jumps(lmp):
     # 50 degrees per m of drive at 2 m per step: the far disc of block c jumps by metres
     fix = FIX.replace("rotate 20 -30 2", "rotate 20 -30 50")

@@ -344,13 +344,13 @@ def test_extreme_disc_leaves_lost_ignore(lmp):
 
 
 def test_extreme_hanging_wall_leaves_box(scenes, tmp_path):
-    """A fault target beyond the box: the hanging-wall discs (integrated by no fix) cross the
-    lower boundary and are lost: the run stops with the lost-atoms error of fix saltdem/nve
-    (it counts all atoms), not silently."""
+    """A fault target beyond the box: the hanging-wall discs (integrated by no fix) would cross
+    the lower boundary; the motion fix refuses to start, naming where they would go."""
     s, data = scenes("quick")
     r = run_scene(tmp_path, s, data, FAULT + "thermo 100000\nrun 20000\n", rate=100.0,
                   target=5000.0)
-    assert_error(r, "Fix saltdem/nve", "lost by step")
+    assert_error(r, "Fix saltdem/fault", "the motion to the target 5000 m takes wall discs out of the box")
+    assert "Step" not in r.out.split("ERROR")[0].split("Setting up Verlet run")[-1]
 
 
 # ---------------------------------------------------------------------------------------------

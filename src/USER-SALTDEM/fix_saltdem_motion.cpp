@@ -178,6 +178,8 @@ void FixSaltdemMotion::init()
       error->all(FLERR, "Fix {} {}: block group {} has no atoms", style, id,
                  group->names[b.igroup]);
 
+  check_travel();
+
   // the step of the drive, here since the time step may change after the fix is defined
   const double step = rate * update->dt;
   if (!std::isfinite(step) || step > target)
@@ -205,6 +207,52 @@ void FixSaltdemMotion::init()
                      "{:.4g} m: the walls jump through discs. Lower the rate or the time step",
                      style, id, speed * step, rate, update->dt, speed, JUMP_FRACTION, rminall);
   }
+}
+
+/* before the drive starts: every disc of the blocks stays in the box (its non-periodic
+   directions) over the whole motion, checked at the phases' ends and at the target (a block
+   turns by less than a half turn per phase) */
+
+void FixSaltdemMotion::check_travel()
+{
+  if (disp > 0.0) return;
+  std::vector<double> ds = {target};
+  for (const auto &b : blocks) {
+    ds.push_back(MIN(b.from, target));
+    ds.push_back(MIN(b.to, target));
+  }
+  double **x = atom->x;
+  const double *lo = domain->boxlo, *hi = domain->boxhi;
+  double worst = 0.0, where[2] = {0.0, 0.0};
+  for (int i = 0; i < atom->nlocal; i++) {
+    const int k = block_of(i);
+    if (k < 0) continue;
+    for (double d : ds) {
+      double xe[2], turn;
+      carry(k, d, x[i], xe, turn);
+      for (int dim = 0; dim < 2; dim++) {
+        if (domain->periodicity[dim]) continue;
+        const double out = MAX(lo[dim] - xe[dim], xe[dim] - hi[dim]);
+        if (out > worst) {
+          worst = out;
+          where[0] = xe[0];
+          where[1] = xe[1];
+        }
+      }
+    }
+  }
+  struct {
+    double out;
+    int rank;
+  } mine = {worst, comm->me}, all;
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  if (all.out <= 0.0) return;
+  MPI_Bcast(where, 2, MPI_DOUBLE, all.rank, world);
+  error->all(FLERR,
+             "Fix {} {}: the motion to the target {} m takes wall discs out of the box (to "
+             "({:.6g}, {:.6g}), {:.4g} outside [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]); enlarge the "
+             "box (change_box) or lower the target",
+             style, id, target, where[0], where[1], all.out, lo[0], hi[0], lo[1], hi[1]);
 }
 
 /* the block's fastest disc per unit of drive rate: its translation plus its turn times the

@@ -90,6 +90,7 @@ class FixSaltdemMotion : public Fix {
 
  private:
   void set_velocity(double speed);
+  void check_travel();                   // the blocks stay in the box to the target
   double block_speed(const Block &b);    // fastest disc of the block per unit of drive rate
  protected:
   int block_of(int i) const;               // the first phase of local atom i's block (-1: none)

@@ -178,14 +178,14 @@ def test_motion_fast_block_warns_once(lmp):
     """Keystone at 2000 m/s, dt 0.001: both blocks move 2 m per step (the right block at
     2 cos 60 = 1 x the rate), 0.2 of the smallest radius (the walls, 10 m): one warning over
     two runs.  At 400 m/s (0.4 m, 0.04 of it) none."""
-    fast = KEYSTONE.format(rate=2000).replace("target 5", "target 50")
+    fast = KEYSTONE.format(rate=2000).replace("target 5", "target 10")
     r = lmp(deck(extra=fast, nrun=2, eta="5e2") + "run 2\n")
     check_ok(r)
     warns = re.findall(r"WARNING: Fix saltdem/keystone f: one time step moves a block by "
                        r"([0-9.e+-]+) m", r.out)
     assert len(warns) == 1 and float(warns[0]) == pytest.approx(2.0), r.out[-2000:]
     assert "smallest disc radius 10 m" in r.out and r.out.count("Loop time") == 2
-    slow = KEYSTONE.format(rate=400).replace("target 5", "target 50")
+    slow = KEYSTONE.format(rate=400).replace("target 5", "target 10")
     r = lmp(deck(extra=slow, nrun=2, eta="5e2"))
     check_ok(r)
     assert "WARNING" not in r.out

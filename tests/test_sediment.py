@@ -246,7 +246,7 @@ def test_drive_interval_from_a_motion_fix(bed, tmp_path):
     deck = FROZEN + """
 variable rw atom (type==3)&&(x>1000)
 group right variable rw
-fix ext right saltdem/tiltwall tilt 5 rate 10 target 100
+fix ext right saltdem/tiltwall tilt 5 rate 10 target 60
 """ + SED + THERMO + "run 40\n"
     # 10 m/s x 1/640 s = 1/64 m per step: 0.125 m of drive every 8 steps, exactly
     r = lmp_sed(bed, tmp_path, deck, mode="rate 1", every=0.125, every_t=10, extra="base 150 drive f_ext[1]")

@@ -123,6 +123,8 @@ def _faults(items: list, width: float, source: str) -> list:
         where = f"{source} fault {k + 1}"
         check_keys(fd, {"name", "x", "dip", "toward"}, where)
         fname = fd.get("name", f"f{k + 1}")
+        if not isinstance(fname, str) or not fname.replace("_", "").isalnum():
+            raise SectionError(f"{where}: name {fname!r} must be letters, digits and _")
         dip = number(fd, "dip", where)
         if not 0 < dip <= 90:
             raise SectionError(f"{where} ({fname}): dip {dip:g} must be in (0, 90] degrees")

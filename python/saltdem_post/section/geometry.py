@@ -60,8 +60,11 @@ def face_depths(s: Section) -> list:
 
 
 def wall_lines(s: Section) -> list:
-    """saltdem/wall commands, block by block, in the order the paper's decks lay them."""
-    lines = []
+    """saltdem/wall commands, block by block, in the order the paper's decks lay them (each
+    fault's sine and cosine as equal-style variables, as the decks have them: LAMMPS evaluates
+    those to other bits than the same formula inline)."""
+    lines = [f"variable        sd_{f.name} equal sin({fmt(f.dip)}*PI/180)\n"
+             f"variable        cd_{f.name} equal cos({fmt(f.dip)}*PI/180)" for f in s.faults]
     wtop = "${wtop}" if s.wedge else "$(v_H+v_salt)"     # a wedge's walls reach above its load
     n = len(s.blocks)
     travel = f"v_target*{fmt(max([1.0, _domino_slip(s)] + [abs(b.scale) for b in s.blocks]))}"
@@ -75,13 +78,13 @@ def wall_lines(s: Section) -> list:
         elif fl.toward == "right":                       # it is the hanging wall of fl
             x0 = f"$({fmt(fl.x)}+v_rw)"
         else:                                            # footwall of a fault dipping left
-            x0 = f"$({fmt(fl.x)}+v_rw*(1-cos({fmt(fl.dip)}*PI/180))/sin({fmt(fl.dip)}*PI/180))"
+            x0 = f"$({fmt(fl.x)}+v_rw*(1-v_cd_{fl.name})/v_sd_{fl.name})"
         if fr is None:
             x1 = "$(v_width+v_rw)"
             if s.right_wall == "move":
                 x1 = f"$(v_width+v_target*{fmt(abs(s.right_move[0]))}+3*v_rw)"    # under the gap
         elif fr.toward == "right":                       # footwall of fr
-            x1 = f"$({fmt(fr.x)}-v_rw*(1-cos({fmt(fr.dip)}*PI/180))/sin({fmt(fr.dip)}*PI/180))"
+            x1 = f"$({fmt(fr.x)}-v_rw*(1-v_cd_{fr.name})/v_sd_{fr.name})"
         else:
             x1 = f"$({fmt(fr.x)}-v_rw)"
         y = f"$({fmt(b.top)}-v_rw)"
@@ -102,7 +105,7 @@ def wall_lines(s: Section) -> list:
             footwall = (side == "right" and f.toward == "right") or (side == "left" and f.toward == "left")
             if not footwall:
                 continue
-            sd, cd = f"sin({fmt(f.dip)}*PI/180)", f"cos({fmt(f.dip)}*PI/180)"
+            sd, cd = f"v_sd_{f.name}", f"v_cd_{f.name}"
             # the face starts a disc inside the footwall's corner and runs down-dip
             back, down = ("-", "+") if f.toward == "right" else ("+", "-")
             top = fmt(b.top)

@@ -18,7 +18,7 @@
 #            is under the scenes' overburden (docs/scenes.md), at both of Fig. 6's rates
 #   syntectonic  Expt 1 with sedimentation that keeps filling the hanging-wall low (every 50 m
 #            of slip, fill to the initial top of the section: examples/scene/sediment.in)
-#            beside the plain Expt 1 (issue 18; docs/gallery.md, "Beyond the paper")
+#            beside the plain Expt 1 (docs/beyond.md)
 #   sections the sections beyond the paper's (examples/sections, docs/sections.md): three domino
 #            basement faults, salt pinching out over a basement step on an extending margin, a
 #            salt pillow under a two-unit cover

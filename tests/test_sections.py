@@ -229,3 +229,19 @@ def test_a_restart_file_of_another_deck_is_refused(tmp_path):
     r = run_deck(d, wd, "-var", "restart", newest.name)
     assert r.returncode == 1
     assert "holds no drive displacement for this deck's motion fix" in r.stdout
+
+
+def test_the_how_to_example_is_the_staircase_section():
+    """docs/sections.md's worked example is examples/sections/staircase.toml (the same section)."""
+    import re
+    import tomllib
+    doc = (ROOT / "docs" / "sections.md").read_text()
+    block = re.search(r"   ```toml\n(.*?)   ```", doc, re.S).group(1)
+    text = "\n".join(l[3:] for l in block.splitlines())
+    shown = tomllib.loads(text)
+    real = tomllib.loads((ROOT / "examples" / "sections" / "staircase.toml").read_text())
+    real.pop("title", None)
+    assert shown == real
+    assert deck(parse(text, "my_basin.toml")).splitlines()[20:] == \
+        deck(parse((ROOT / "examples" / "sections" / "staircase.toml").read_text(),
+                   "staircase.toml")).splitlines()[20:]

@@ -416,7 +416,9 @@ def test_tiltwall_errors(lmp, fgroup, spec, words):
     ("saltdem/keystone", "dip 60 keystone key rate 1 target 1"),
     ("saltdem/tiltwall", "tilt 5 rate 1 target 1"),
 ])
-def test_fixes_require_2d(lmp, style, args):
+def test_fixes_move_in_the_section_plane_in_3d(lmp, style, args):
+    """In 3D the section is the x-y plane: the blocks move in it, z unchanged
+    (tests/test_walls_3d.py has the strips)."""
     deck = """
 units si
 dimension 3
@@ -424,12 +426,18 @@ atom_style sphere
 boundary f f f
 region box block -10 10 -10 10 -10 10
 create_box 1 box
-create_atoms 1 single 0 0 0
-create_atoms 1 single 5 0 0
+create_atoms 1 single 0 0 3
+create_atoms 1 single 5 0 -3
 group key id 1
 group moving id 1 2
-""" + f"fix m moving {style} {args}\n"
-    assert_error(lmp(deck), style, "dimension 2")
+timestep 0.1
+""" + f"fix m moving {style} {args}\nrun 20\n" + DUMP.format("f.txt").replace(
+        "id x y vx vy omegaz", "id x y z vx vy omegaz")
+    r = lmp(deck)
+    check_ok(r)
+    f = read_dump(r.workdir / "f.txt")
+    np.testing.assert_array_equal(f["z"], [3.0, -3.0])
+    assert f["x"][1] == pytest.approx(5.0 + 1.0 * (1.0 if "tiltwall" in style else 2 * math.cos(math.radians(60))))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -571,7 +579,7 @@ def test_wall_errors(lmp, spec, words):
 
 @pytest.mark.parametrize("head,words", [
     (HEAD.replace("dimension 2", "dimension 3").replace("boundary f f p", "boundary f f f"),
-     ["dimension 2"]),
+     ["give 'z Z0 Z1' in a box that is not periodic in z"]),
     (HEAD.replace("atom_style sphere", "atom_style atomic"), ["atom style sphere"]),
     ("units si\ndimension 2\natom_style sphere\n", ["before simulation box"]),
 ])

@@ -49,7 +49,6 @@ FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), ended(0), disp(0.0), sense(1),
     has_toward(0), warned(0)
 {
-  if (domain->dimension != 2) error->all(FLERR, "Fix {} requires dimension 2", style);
   time_integrate = 1;
   vector_flag = 1;
   global_freq = 1;

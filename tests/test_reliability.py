@@ -503,10 +503,8 @@ BAD = [
     ("fault-no-target", [fault("dip 30 rate 0.05")], ["saltdem/fault", "target = 0"]),
     ("fault-rate-nonnumeric", [fault("dip 30 rate fast target 1")], ["'fast'"]),
     ("fault-noargs", [fault("")], ["saltdem/fault"]),
-    ("fault-3d", [("dimension 2", "dimension 3"), ("lattice sq 20", "lattice sc 20"),
-                  ("fix 5 all enforce2d", ""),
-                  ("set group all density/disc 2200", "set group all density 2200")],
-     ["saltdem/fault", "dimension 2"]),
+    ("fault-toward", [fault("dip 30 rate 0.05 target 1 toward up")],
+     ["saltdem/fault", "toward 'up' must be right or left"]),
 ]
 
 

@@ -60,8 +60,10 @@ FixSaltdemBlocks::FixSaltdemBlocks(LAMMPS *lmp, int narg, char **arg) :
   // a block given again is a later phase of its motion: after the previous one, in order
   link_phases();
   const int n = blocks.size();
+  std::vector<bool> later(n, false);    // a phase some earlier phase of its block leads to
   for (int k = 0; k < n; k++) {
     const int j = blocks[k].next;
+    if (j >= 0) later[j] = true;
     if (j >= 0 && blocks[j].from < blocks[k].to)
       error->all(FLERR,
                  "Fix {}: block {} is given again with a window (from {} to {}) that starts "
@@ -69,14 +71,7 @@ FixSaltdemBlocks::FixSaltdemBlocks(LAMMPS *lmp, int narg, char **arg) :
                  "each from where the previous one ends or later",
                  style, group->names[blocks[k].igroup], blocks[j].from, blocks[j].to,
                  blocks[k].from, blocks[k].to);
-    bool first = true;
-    for (int i = 0; i < k; i++)
-      if (blocks[i].igroup == blocks[k].igroup) first = false;
-    if (first) {
-      firsts.push_back(k);
-      ref0.push_back(blocks[k].pivot[0]);
-      ref0.push_back(blocks[k].pivot[1]);
-    }
+    if (!later[k]) firsts.push_back(k);
   }
   vector_flag = 1;
   size_vector = 1;
@@ -238,8 +233,9 @@ double FixSaltdemBlocks::compute_array(int i, int j)
 {
   const int first = firsts[i];
   double x[2], turn;
-  carry(first, disp, &ref0[2 * i], x, turn);
-  const double dx = x[0] - ref0[2 * i], dy = x[1] - ref0[2 * i + 1];
+  const double *x0 = blocks[first].pivot;    // the reference point at drive 0
+  carry(first, disp, x0, x, turn);
+  const double dx = x[0] - x0[0], dy = x[1] - x0[1];
   if (j == 0) return sqrt(dx * dx + dy * dy);
   if (j == 1) return dx;
   if (j == 2) return -dy;

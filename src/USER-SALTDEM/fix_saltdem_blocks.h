@@ -37,8 +37,7 @@ class FixSaltdemBlocks : public FixSaltdemMotion {
   double compute_array(int, int) override;
 
  protected:
-  std::vector<int> firsts;     // the first phase of each block, in the order given
-  std::vector<double> ref0;    // each block's reference point at drive 0 (its first pivot)
+  std::vector<int> firsts;    // the first phase of each block, in the order given
   int parse_args(int, int, char **) override;
   int parse_block(int, int, char **);
 };

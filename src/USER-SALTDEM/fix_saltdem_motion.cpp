@@ -136,8 +136,10 @@ void FixSaltdemMotion::carry(int k, double d, const double x0[2], double x[2], d
     const Block &b = blocks[k];
     const double a = active(b, d), c = cos(b.omega * a), s = sin(b.omega * a);
     const double dx = x[0] - b.pivot[0], dy = x[1] - b.pivot[1];
-    x[0] = b.pivot[0] + a * b.vel[0] + c * dx - s * dy;
-    x[1] = b.pivot[1] + a * b.vel[1] + s * dx + c * dy;
+    double p[2];
+    pivot_at(b, d, p);
+    x[0] = p[0] + c * dx - s * dy;
+    x[1] = p[1] + s * dx + c * dy;
     turn += b.omega * a;
   }
 }
@@ -145,6 +147,13 @@ void FixSaltdemMotion::carry(int k, double d, const double x0[2], double x[2], d
 double FixSaltdemMotion::active(const Block &b, double d)
 {
   return MAX(MIN(d, b.to) - b.from, 0.0);
+}
+
+void FixSaltdemMotion::pivot_at(const Block &b, double d, double p[2])
+{
+  const double a = active(b, d);
+  p[0] = b.pivot[0] + a * b.vel[0];
+  p[1] = b.pivot[1] + a * b.vel[1];
 }
 
 double FixSaltdemMotion::angle_arg(const std::string &kw, const std::string &val)
@@ -261,13 +270,14 @@ double FixSaltdemMotion::block_speed(const Block &b)
 {
   double speed = sqrt(b.vel[0] * b.vel[0] + b.vel[1] * b.vel[1] + b.vel[2] * b.vel[2]);
   if (b.omega == 0.0) return speed;
-  const double a = active(b, disp), px = b.pivot[0] + a * b.vel[0], py = b.pivot[1] + a * b.vel[1];
+  double p[2];
+  pivot_at(b, disp, p);
   double r2 = 0.0, r2all;
   double **x = atom->x;
   const int k = &b - blocks.data();
   for (int i = 0; i < atom->nlocal; i++)
     if (in_chain(block_of(i), k)) {
-      const double dx = x[i][0] - px, dy = x[i][1] - py;
+      const double dx = x[i][0] - p[0], dy = x[i][1] - p[1];
       r2 = MAX(r2, dx * dx + dy * dy);
     }
   MPI_Allreduce(&r2, &r2all, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -303,9 +313,9 @@ void FixSaltdemMotion::set_velocity(double speed)
     const double s = k >= 0 ? speed : 0.0;
     for (int j = 0; j < 3; j++) v[i][j] = s * b->vel[j];
     if (b->omega != 0.0) {
-      const double a = active(*b, disp);
-      const double dx = x[i][0] - (b->pivot[0] + a * b->vel[0]);
-      const double dy = x[i][1] - (b->pivot[1] + a * b->vel[1]);
+      double p[2];
+      pivot_at(*b, disp, p);
+      const double dx = x[i][0] - p[0], dy = x[i][1] - p[1];
       v[i][0] -= s * b->omega * dy;
       v[i][1] += s * b->omega * dx;
     }
@@ -334,28 +344,29 @@ void FixSaltdemMotion::initial_integrate(int)
     return;
   }
   const int nb = blocks.size();
-  std::vector<double> ds(nb), c(nb), sn(nb), px(nb), py(nb);
+  phase_steps.resize(nb);
   for (int k = 0; k < nb; k++) {
     const Block &b = blocks[k];
+    PhaseStep &ps = phase_steps[k];
     // a step inside the window moves by the step itself, bit for bit
-    ds[k] = (disp >= b.from && disp + step <= b.to) ? step
+    ps.ds = (disp >= b.from && disp + step <= b.to) ? step
                                                     : active(b, disp + step) - active(b, disp);
-    c[k] = cos(b.omega * ds[k]);
-    sn[k] = sin(b.omega * ds[k]);
-    px[k] = b.pivot[0] + active(b, disp) * b.vel[0];
-    py[k] = b.pivot[1] + active(b, disp) * b.vel[1];
+    ps.c = cos(b.omega * ps.ds);
+    ps.s = sin(b.omega * ps.ds);
+    pivot_at(b, disp, ps.p);
   }
   double **x = atom->x;
   for (int i = 0; i < atom->nlocal; i++)
     for (int k = block_of(i); k >= 0; k = blocks[k].next) {
-      if (ds[k] == 0.0) continue;
+      const PhaseStep &ps = phase_steps[k];
+      if (ps.ds == 0.0) continue;
       const Block &b = blocks[k];
       if (b.omega != 0.0) {
-        const double dx = x[i][0] - px[k], dy = x[i][1] - py[k];
-        x[i][0] = px[k] + c[k] * dx - sn[k] * dy;
-        x[i][1] = py[k] + sn[k] * dx + c[k] * dy;
+        const double dx = x[i][0] - ps.p[0], dy = x[i][1] - ps.p[1];
+        x[i][0] = ps.p[0] + ps.c * dx - ps.s * dy;
+        x[i][1] = ps.p[1] + ps.s * dx + ps.c * dy;
       }
-      for (int j = 0; j < 3; j++) x[i][j] += ds[k] * b.vel[j];
+      for (int j = 0; j < 3; j++) x[i][j] += ps.ds * b.vel[j];
     }
   disp += step;
   set_velocity(disp < target ? rate : 0.0);

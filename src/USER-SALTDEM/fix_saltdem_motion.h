@@ -58,6 +58,8 @@ class FixSaltdemMotion : public Fix {
   static Block translation(int igroup, double vx, double vy);
   // the drive displacement phase b has moved by at drive displacement d
   static double active(const Block &b, double d);
+  // where phase b's pivot is at drive displacement d
+  static void pivot_at(const Block &b, double d, double p[2]);
   void link_phases();
   // where the point x0 (at drive 0) of the block whose first phase is k is at drive d, and
   // by how much it has turned (radians)
@@ -90,6 +92,12 @@ class FixSaltdemMotion : public Fix {
 
  private:
   void set_velocity(double speed);
+  // per phase, this step's part of the drive, its turn (cos, sin) and its pivot where the
+  // step starts (kept between steps to spare the allocation)
+  struct PhaseStep {
+    double ds, c, s, p[2];
+  };
+  std::vector<PhaseStep> phase_steps;
   void check_travel();                   // the blocks stay in the box to the target
   double block_speed(const Block &b);    // fastest disc of the block per unit of drive rate
  protected:

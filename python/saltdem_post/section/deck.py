@@ -62,7 +62,7 @@ def _unit_lines(s: Section) -> tuple:
 
 def deck(s: Section) -> str:
     """The plain LAMMPS deck of section s."""
-    faults = {f.name: f for f in s.faults}
+    faults = s.faults_by_name
     moving = [b.name for b in s.blocks if not b.static] + (
         ["wall_right"] if s.right_wall == "move" or s.blocks[-1].tilt else [])
     if not moving and not s.wedge:

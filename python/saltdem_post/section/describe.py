@@ -248,7 +248,6 @@ def _place_blocks(s: Section):
     xs = [0.0] + [f.x for f in s.faults] + [s.width]
     for b, lo, hi in zip(s.blocks, xs, xs[1:]):
         b.left, b.right = lo, hi
-    faults = {f.name: f for f in s.faults}
     # two faults that dip toward each other meet at depth: below the block's top, within the depth
     # the blocks travel (the keystone must stay a wedge over the whole drive)
     for a, b in zip(s.faults, s.faults[1:]):
@@ -281,6 +280,5 @@ def _place_blocks(s: Section):
         if theta >= math.radians(fs[0].dip) - math.radians(10):
             raise SectionError(f"{s.source}: the domino blocks would tilt {math.degrees(theta):.0f} degrees, "
                                f"to within 10 degrees of their faults' dip {fs[0].dip:g}: lower tilt or target")
-    del faults
 
 

@@ -38,12 +38,19 @@ def fmt(v: float) -> str:
     return f"{v:.12g}"
 
 
+def _lining(s: Section, top: float, target: str, dw: str) -> str:
+    """The length of a moving block's fault-face lining, as a deck expression in the given
+    spellings of the target and the wall discs' diameter: the largest slip a fault sees over
+    the drive, two discs more, and the block's top."""
+    scale = fmt(max([1.0, _domino_slip(s)] + [abs(b.scale) for b in s.blocks]))
+    return f"({target}*{scale}+2*{dw}+{fmt(top)})"
+
+
 def face_depths(s: Section) -> list:
     """How far below the lowest block's top each moving block's fault face reaches at the end of
     the drive (deck expressions in target and rmin, for the box): its lining plus the block's
     descent.  (The lining of wall_lines(); rmin is the wall discs' radius.)"""
-    faults = {f.name: f for f in s.faults}
-    scale = fmt(max([1.0, _domino_slip(s)] + [abs(b.scale) for b in s.blocks]))
+    faults = s.faults_by_name
     out = []
     n = len(s.blocks)
     for k, b in enumerate(s.blocks):
@@ -53,7 +60,7 @@ def face_depths(s: Section) -> list:
         for f, side in ((s.faults[k - 1] if k else None, "left"), (s.faults[k] if k < n - 1 else None, "right")):
             if f is None or not ((side == "right") == (f.toward == "right")):
                 continue
-            lface = f"(${{target}}*{scale}+4*${{rmin}}+{fmt(b.top)})"
+            lface = _lining(s, b.top, "${target}", "(2*${rmin})")
             out.append(f"{lface}*sin({fmt(f.dip)}*PI/180)+${{rmin}}*cos({fmt(f.dip)}*PI/180)-{fmt(b.top)}"
                        f"+${{target}}*{fmt(down)}")
     return out
@@ -67,7 +74,6 @@ def wall_lines(s: Section) -> list:
              f"variable        cd_{f.name} equal cos({fmt(f.dip)}*PI/180)" for f in s.faults]
     wtop = "${wtop}" if s.wedge else "$(v_H+v_salt)"     # a wedge's walls reach above its load
     n = len(s.blocks)
-    travel = f"v_target*{fmt(max([1.0, _domino_slip(s)] + [abs(b.scale) for b in s.blocks]))}"
     for k, b in enumerate(s.blocks):
         g = b.name
         fl = s.faults[k - 1] if k > 0 else None          # the fault on its left
@@ -113,7 +119,7 @@ def wall_lines(s: Section) -> list:
             if b.static and other.static:     # a static step: lined down to the lower block
                 lface = f"(2*v_dw+{fmt(b.top - other.top)})"
             else:
-                lface = f"({travel}+2*v_dw+{top})"
+                lface = _lining(s, b.top, "v_target", "v_dw")
             lines.append(f"saltdem/wall    3 $({fmt(f.x)}{back}v_rw*{sd}) $({top}-v_rw*{cd}) "
                          f"$({fmt(f.x)}{back}v_rw*{sd}{down}{lface}*{cd}) $({top}-v_rw*{cd}-{lface}*{sd}) "
                          f"${{rw}} group {g}")
@@ -125,11 +131,18 @@ def wall_lines(s: Section) -> list:
 DOMINO_PHASES = 20
 
 
+def _dominoes(s: Section) -> tuple:
+    """The domino blocks, left to right, and the dip of their faults (None, None: none)."""
+    dom = [b for b in s.blocks if b.tilt]
+    if not dom:
+        return None, None
+    return dom, s.faults[s.blocks.index(dom[0]) - 1].dip
+
+
 def _domino_crest_shift(s: Section, dom: list, k: int, th: str) -> str:
     """e_k(theta): how far domino block k's crest has moved right at the turn th (an expression
     in radians); k indexes dom, the domino blocks left to right."""
-    first = s.blocks.index(dom[0])
-    dip = s.faults[first - 1].dip
+    dip = _dominoes(s)[1]
     terms = []
     for m in range(k + 1):
         L = fmt(dom[m].right - dom[m].left)
@@ -141,7 +154,7 @@ def _domino_crest_shift(s: Section, dom: list, k: int, th: str) -> str:
 def domino_extension(s: Section) -> str:
     """The last domino crest's shift at the end of the drive (a deck expression in target), the
     room the box needs on the right; '0' without domino blocks."""
-    dom = [b for b in s.blocks if b.tilt]
+    dom = _dominoes(s)[0]
     if not dom:
         return "0"
     return _domino_crest_shift(s, dom, len(dom) - 1, f"({fmt(dom[0].tilt)}*PI/180*${{target}})")
@@ -153,7 +166,7 @@ def _domino_args(s: Section) -> list:
     hanging-wall corner slides down the face of the block to its left (static for the first,
     turned by theta for the others).  The exact path, cut into DOMINO_PHASES phases of equal
     turn, each exact at its ends (a turn about the moving crest and a uniform translation)."""
-    dom = [b for b in s.blocks if b.tilt]
+    dom = _dominoes(s)[0]
     w = dom[0].tilt
     n = DOMINO_PHASES
 
@@ -177,18 +190,17 @@ def _domino_args(s: Section) -> list:
 
 def _domino_slip(s: Section) -> float:
     """The largest slip on a domino fault per m of drive at the section's target."""
-    dom = [b for b in s.blocks if b.tilt]
+    dom, dip = _dominoes(s)
     if not dom:
         return 0.0
-    first = s.blocks.index(dom[0])
-    d = math.radians(s.faults[first - 1].dip)
+    d = math.radians(dip)
     th = math.radians(dom[0].tilt * s.target)
     return max((b.right - b.left) * math.sin(th) / math.sin(d - th * (k > 0))
                for k, b in enumerate(dom)) / s.target
 
 
 def block_args(s: Section) -> list:
-    faults = {f.name: f for f in s.faults}
+    faults = s.faults_by_name
     out = []
     if any(b.tilt for b in s.blocks):
         out += _domino_args(s)

@@ -91,6 +91,10 @@ class Section:
     tiny: dict = field(default_factory=dict)    # variables at the tiny preset only
     restart_every: Optional[float] = None
 
+    @property
+    def faults_by_name(self) -> dict:
+        return {f.name: f for f in self.faults}
+
 
 def number(d: dict, key: str, where: str, default=None, positive=False):
     if key not in d:

@@ -47,7 +47,7 @@ class ChannelFlow:
             else:
                 self.profiles[-1].append([float(v) for v in s[1:]])
         self.profiles = [np.array(p) for p in self.profiles]
-        self.rhob = float(re.search(r"salt mass per area: ([0-9.eE+-]+)", output).group(1))
+        self.rhob = float(re.search(r"salt mass per (?:area|volume): ([0-9.eE+-]+)", output).group(1))
 
     def profile(self, k=-1):
         y, n, vx = self.profiles[k].T

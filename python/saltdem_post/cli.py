@@ -1,8 +1,9 @@
 """Command line: ``saltdem-post COMMAND DUMP... [options]``.
 
 Every command reads the dumps frame by frame, writes PNG/CSV/JSON into the
-output directory (``-o``, default ``saltdem_post_out``) and prints a short
-summary.  ``saltdem-post COMMAND -h`` lists the options.
+output directory (``-o``, default ``saltdem_post_out``; ``mapview``: ``-o``
+names its PNG) and prints a short summary.  ``saltdem-post COMMAND -h`` lists
+the options.
 """
 
 from __future__ import annotations
@@ -17,10 +18,11 @@ from typing import List, Optional, Sequence
 import numpy as np
 
 from . import __version__
-from .dump import DumpFormatError, expand_paths, iter_frames, read_frame, scan_frames
+from .dump import DumpFormatError, expand_paths, iter_frames, read_frame, scan_frames, write_dump
 from .materials import DEFAULT_MARKER_COLUMN, MATERIALS, MaterialMap, markers
 from .measure import salt_thickness, vertical_profile
 from .output import write_csv, write_json
+from .slab import map_view, map_view_figure, section_at
 from .strain import strain_between
 # pick_stages and previous_frame: re-exported, the figure tests use them from here
 from .stages import (fault_history, out_path as _out, pick_stages, previous_frame,  # noqa: F401
@@ -212,6 +214,60 @@ def cmd_figure(args) -> dict:
     return result
 
 
+def _section_name(path: str, timestep: int, several: bool, z: float) -> str:
+    stem = os.path.basename(path)
+    for ext in (".gz", ".txt"):
+        stem = stem[:-len(ext)] if stem.endswith(ext) else stem
+    step = f"_{timestep}" if several else ""      # a file of several frames: one name per frame
+    return f"{stem}{step}_z{np.format_float_positional(z, trim='-')}.txt"
+
+
+def cmd_section3d(args) -> List[dict]:
+    paths = expand_paths(args.dumps)
+    per_file = {}
+    for h in scan_frames(paths):
+        per_file[h.path] = per_file.get(h.path, 0) + 1
+    rows = []
+    for frame in iter_frames(paths, _selection(args, ["all"]), _progress(args, "section3d")):
+        for z in args.z:
+            sec = section_at(frame, z, args.width)
+            path = _out(args, _section_name(frame.path, frame.timestep, per_file[frame.path] > 1, z))
+            write_dump(path, [sec])
+            width = sec.box.hi[2] - sec.box.lo[2]
+            counts = {int(t): int(c) for t, c in zip(*np.unique(sec["type"], return_counts=True))}
+            rows.append({"path": path, "timestep": frame.timestep, "z_m": z, "width_m": width,
+                         "natoms": sec.natoms, "types": counts})
+            _say(f"{path}: step {frame.timestep}, z = {z:g} ± {width / 2:.4g} m, {sec.natoms} spheres "
+                 f"(by type: {', '.join(f'{t}: {c}' for t, c in counts.items())})")
+    if not rows:
+        raise ValueError("no frame selected")
+    return rows
+
+
+def cmd_mapview(args) -> dict:
+    ref, cur = read_frame(args.ref, 0), read_frame(args.cur, -1)
+    view = map_view(ref, cur, args.cell, args.radius, MaterialMap.parse(args.types))
+    os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
+    map_view_figure(view, args.output)
+    keys = ("top", "top_ref", "uplift", "dilatation", "shear")
+
+    def span(v):
+        v = v[np.isfinite(v)]
+        return [float(v.min()), float(v.max())] if v.size else [None, None]
+    result = {**view, "range": {k: span(view[k]) for k in keys}, "png": args.output}
+    if args.json:
+        write_json(args.json, result)
+
+    def text(key, fmt):
+        return "..".join("-" if v is None else format(v, fmt) for v in result["range"][key])
+    undefined = int(np.isnan(view["dilatation"]).sum())
+    _say(f"{args.output}: {len(view['x'])} x {len(view['z'])} cells (x, z) of {view['cell'][0]:.4g} x "
+         f"{view['cell'][1]:.4g} m, steps {ref.timestep} -> {cur.timestep}; top change {text('uplift', '+.1f')} m, "
+         f"dilatation {text('dilatation', '.3g')}, max shear {text('shear', '.3g')} "
+         f"({undefined} cell(s) without a strain)")
+    return result
+
+
 def _outcome_options(args):
     from .outcomes import OutcomeOptions
     return OutcomeOptions(
@@ -276,7 +332,8 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="saltdem-post",
         description="SaltDEM post-processing: strain, salt thickness and welds, fault displacement, "
-                    "flow profiles and paper-style figures from the package's LAMMPS dumps.",
+                    "flow profiles and paper-style figures from the package's LAMMPS dumps; sections "
+                    "and map views of 3D slabs.",
         epilog="Give the dumps first, then options: saltdem-post figure run/dump.*.txt.gz --at 100 250. "
                "See docs/postprocessing.md.")
     p.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
@@ -404,6 +461,34 @@ def _parser() -> argparse.ArgumentParser:
                    help="keystone: the deformed zone from the graben spans gaps of undeformed cover up to this "
                         "many disc diameters (default %(default)s)")
     s.add_argument("--title", help="heading of outcomes.md")
+
+    s = sub.add_parser("section3d", parents=[frames],
+                       help="3D slabs: 2D sections at given z, written as 2D dumps for the other commands",
+                       description="3D slabs: the spheres within --width/2 of each plane z = Z (periodic in z), "
+                                   "written without the z columns as DIR/<stem>_z<Z>.txt, so figure, outcomes, "
+                                   "strain, ... run on them (default: every frame)")
+    s.set_defaults(func=cmd_section3d)
+    s.add_argument("dumps", nargs="+", help="3D dump files or globs (text, optionally .gz)")
+    s.add_argument("--z", type=float, nargs="+", required=True, help="section planes, m along strike")
+    s.add_argument("--width", type=float, help="slice thickness, m (default one median sphere diameter)")
+    s.add_argument("-o", "--out", default="saltdem_post_out", help="output directory (default %(default)s)")
+    s.add_argument("-q", "--quiet", action="store_true", help="no progress display")
+
+    s = sub.add_parser("mapview", help="3D slabs: map of the cover's top between two frames "
+                                       "(elevation change, horizontal dilatation and shear on x-z cells)",
+                       description="3D slabs: map view of the cover's top surface on x-z cells between REF "
+                                   "and CUR: elevation change, and the horizontal dilatation and maximum "
+                                   "shear of its top layer")
+    s.set_defaults(func=cmd_mapview)
+    s.add_argument("ref", help="earlier 3D dump (its first frame)")
+    s.add_argument("cur", help="later 3D dump (its last frame)")
+    s.add_argument("--cell", type=float, help="cell size, m (default two median cover diameters)")
+    s.add_argument("--radius", type=float, help="strain fit: top-layer spheres this close to a cell "
+                                                "centre, m (default the cell size)")
+    s.add_argument("--types", default=None, help="type->material map (default cover=1;salt=2;wall=3)")
+    s.add_argument("-o", "--output", default=os.path.join("saltdem_post_out", "mapview.png"),
+                   help="PNG (default %(default)s)")
+    s.add_argument("--json", help="also write the per-cell arrays and their ranges here")
 
     s = sub.add_parser("compare", help="runs side by side against the paper's statements, per stage",
                        description="runs side by side against the paper's statements, per stage, "

@@ -52,7 +52,9 @@ void PairSaltdemViscous::limits_checked()
    constant 0.175 S rho h^2 / (correction eta) (viscfactor 1, rho the disc density) is the
    lowest limit measured (bench/validation/stable_limit.py: 0.177 at S 200 near the sound limit,
    0.197-0.211 in channels at S 5-80, 0.22-0.26 in the Expt 1 scene; Gershgorin's bound with
-   V = disc/0.7 is 0.1).  CONTACT: a disc's tangential dashpot
+   V = disc/0.7 is 0.1).  Spheres (3D) are stable at 0.063 viscous and 0.075 h/c sound (a plane
+   Couette channel), against 0.175 and 0.25 for discs: the 3D constants are those measured
+   (viscous) and 0.8 of it (sound).  CONTACT: a disc's tangential dashpot
    also spins it (SaltDEM::rotation_factor), so dt < m / (g (1 + rot ratio)); measured
    1.26-1.55 times that, so 0.625 of it at viscfactor 1.  The default viscfactor 0.8 leaves a
    margin of 1.25 on both. */
@@ -65,6 +67,8 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
   const double e = eta[i][j];
   const auto &p = params[i][j];
   const double c = elastic_factor(wall);
+  const bool spheres = domain->dimension == 3;
+  const double cvisc = spheres ? 0.063 : 0.175, csound = spheres ? 0.06 : 0.25;
   if (p.kn > 0.0)
     consider_limit(c * sqrt(m / (p.kn * f2v)), best, why, [&] {
       return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
@@ -77,22 +81,22 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
     // V = 1/sum W is not known before the first step: bound it by the
     // disc volume over a packing fraction of 0.7
     // (sub-stepped: the same limit on each of the substeps steps of dt / substeps)
-    lim = substeps * viscfactor * 0.175 * mv * p.h * p.h / (correction * e * f2v);
-    formula = fmt::format("dt{} < {} * 0.175 S rho h^2 / (correction eta), rho the disc "
+    lim = substeps * viscfactor * cvisc * mv * p.h * p.h / (correction * e * f2v);
+    formula = fmt::format("dt{} < {} * {} S rho h^2 / (correction eta), rho the {} "
                           "density, h = {:.6g}, correction = {:.6g}",
                           substeps > 1 ? fmt::format(" / substeps {}", substeps) : "", viscfactor,
-                          p.h, correction);
+                          cvisc, spheres ? "sphere" : "disc", p.h, correction);
     // sound: c^2 = K / rho with the inertial density, CFL 0.25 h / c; a plastic stress
     // is elastic below yield: c^2 = (K + 4G/3) / rho
     const double Gp = (p.mu_y > 0.0 || p.coh_y > 0.0) ? p.G : 0.0;
     if (p.K > 0.0) {
       const double c = sqrt((p.K + 4.0 * Gp / 3.0) * f2v / (0.7 * mv));
-      consider_limit(0.25 * p.h / c, best, why, [&] {
+      consider_limit(csound * p.h / c, best, why, [&] {
         return fmt::format("K = {:.6g}{} of types {} {} (sound speed {:.4g} with the inertial "
-                           "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
+                           "density; dt < {} h / c, h = {:.6g}); a larger dt needs a smaller "
                            "K{} or more inertia",
                            p.K, Gp > 0.0 ? fmt::format(" and plastic modulus G = {:.6g}", Gp) : "",
-                           i, j, c, p.h, Gp > 0.0 ? " or G" : "");
+                           i, j, c, csound, p.h, Gp > 0.0 ? " or G" : "");
       });
     }
   } else {

@@ -39,7 +39,7 @@ def _unit_lines(s: Section) -> tuple:
         if u.type > 1:
             assign.append(f"set             group unit_{u.name} type {u.type}")
         if u.density:
-            assign.append(f"set             group unit_{u.name} density/disc {fmt(u.density)}")
+            assign.append(f"set             group unit_{u.name} ${{dens}} {fmt(u.density)}")
         top = low
     if own:
         # an interface is as weak (and as soft) as its weaker side: the smaller of each value
@@ -131,7 +131,11 @@ def deck(s: Section) -> str:
     for k, v in s.extra_vars.items():
         L.append(f"variable        {k} index {v}")
     uhead, uassign, ucoeffs = _unit_lines(s)
-    L += ["include         ${root}/examples/scene/params.in"] + uhead + [
+    L += ["include         ${root}/examples/scene/params.in"] + uhead + ([
+          "# (a unit's own material is calibrated on discs: 3D decks use the cover's, scaled in spheres.in)",
+          'if "${dim} == 3" then &',
+          f"  \"print 'section {s.name}: its cover units have materials of their own, calibrated "
+          f"in 2D only; run it in 2D (dim 2)'\" \"quit 1\""] if ucoeffs else []) + [
           "# the preset must resolve the section: a disc radius across salt and cover, ten along it",
           'if "${salt} < ${rmax} || ${cover} < ${rmax} || ${width} < $(10*v_rmax)" then &',
           f"  \"print 'section {s.name}: preset ${{preset}} cannot pack it: salt ${{salt}} m, cover ${{cover}} m "

@@ -728,3 +728,53 @@ def test_momentum_conserved(lmp, tmp_path, np):
         assert abs(t["c_p[1]"][i]) < 1e-13 * t["c_p[3]"][i]
         assert abs(t["c_p[2]"][i]) < 1e-13 * t["c_p[3]"][i]
         assert abs(t["c_p[4]"][i]) < 1e-13 * t["c_p[5]"][i]
+
+
+HEADON_DIM = """units si
+dimension {dim}
+atom_style sphere
+atom_modify map array
+boundary f f {zb}
+comm_modify vel yes
+region box block -50 50 -50 50 {zlo} {zhi}
+create_box 1 box
+create_atoms 1 single -10.004 0 0
+create_atoms 1 single 10.004 0 0
+set type 1 diameter 20.0
+set type 1 mass {mass}
+neighbor 0.5 bin
+pair_style saltdem/cohesive
+pair_coeff 1 1 1e9 0 0 0 1e6 0.01 damp 0.3 0
+velocity all set 0 0 0
+velocity all set 1 0 0 sum no units box
+group a id 1
+group b id 2
+velocity b set -1 0 0
+fix 1 all nve/sphere {disc}
+{fix2d}
+variable vx1 equal vx[1]
+variable x1 equal x[1]
+thermo_style custom step v_x1 v_vx1 pe
+thermo_modify format float %.15g
+thermo 10
+timestep 0.0002
+run 1500
+"""
+
+
+def test_headon_3d_spheres_match_discs(lmp, tmp_path):
+    """The normal contact law does not depend on the dimension: two spheres of the discs' mass
+    collide head-on (spring, dashpot, cohesive well) exactly as the discs do."""
+    m = disc_mass(20.0)
+    runs = {}
+    for dim in (2, 3):
+        deck = HEADON_DIM.format(dim=dim, zb="p" if dim == 2 else "f", zlo=-0.5 if dim == 2 else -50,
+                                 zhi=0.5 if dim == 2 else 50, mass=m, disc="disc" if dim == 2 else "",
+                                 fix2d="fix 2 all enforce2d" if dim == 2 else "")
+        r = lmp(deck)
+        check_ok(r)
+        runs[dim] = r.thermo()
+    a, b = runs[2], runs[3]
+    assert min(a["v_vx1"]) < -0.3 and a["PotEng"][-1] == 0.0    # rebounded (e ~ 0.37), apart
+    for k in ("v_x1", "v_vx1", "PotEng"):
+        assert b[k] == pytest.approx(a[k], rel=1e-12, abs=1e-12)

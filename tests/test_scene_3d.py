@@ -168,7 +168,33 @@ def test_3d_resume_continues_exactly(slab, tmp_path):
         np.testing.assert_allclose(b[c], a[c], rtol=1e-10, atol=1e-10 * np.abs(a[c]).max())
 
 
+def test_fault_dying_out_along_strike(slab, tmp_path):
+    """zends walls, taper_from 0, taper_to 1000: the slab between smooth end walls, the
+    hanging wall's slip whole at z = 0 and none at z = 1000, linear between; the wall
+    spheres span the depth inside the walls."""
+    wd, _ = slab
+    for p in wd.glob("pack_*.data"):
+        (tmp_path / p.name).write_bytes(p.read_bytes())
+    proc = run3d(tmp_path, zends="walls", taper_from=0, taper_to=DEPTH)
+    assert "between smooth end walls" in proc.stdout and "expt1: done, displacement 2.0 m" in proc.stdout
+    first, last = (f for f in (dumps(tmp_path, "expt1")[k] for k in (0, -1)))
+    w = first["type"] == 3
+    z = first["z"][w]
+    r = first["radius"][w]
+    assert np.all(z - r >= -1e-9) and np.all(z + r <= DEPTH + 1e-9)
+    d = np.hypot(last["x"][w] - first["x"][w], last["y"][w] - first["y"][w])
+    moved = d > 1e-3
+    np.testing.assert_allclose(d[moved], 2.0 * (DEPTH - z[moved]) / DEPTH, atol=1e-5)
+    assert len(np.unique(np.round(d[moved], 3))) >= 3
+    # every sphere stays between the end walls
+    assert np.all(last["z"] - last["radius"] > -0.05 * last["radius"])
+    assert np.all(last["z"] + last["radius"] < DEPTH + 0.05 * last["radius"])
+
+
 @pytest.mark.parametrize("var,words", [
+    (dict(dim=2, zends="walls"), "zends and taper_from/taper_to are 3D options"),
+    (dict(zends="open"), "scene: zends open must be periodic or walls"),
+    (dict(taper_from=0, taper_to=500), "taper in a box periodic in z"),
     (dict(depth=0), "a 3D scene needs -var depth of at least 4 rmax = 1000 m"),
     (dict(dim=4), "scene: dim 4 must be 2 or 3"),
     (dict(damping=5e4), "frame damping (-var damping) is a 2D option"),

@@ -115,3 +115,62 @@ def test_3d_strip_motion_two_ranks_match_serial(lmp):
     a, b = read_dump(one.workdir / "walls.txt"), read_dump(two.workdir / "walls.txt")
     for c in ("x", "y", "z", "vx", "vy", "omegaz"):
         np.testing.assert_allclose(a[c], b[c], rtol=0, atol=1e-12)
+
+
+TAPER = """
+saltdem/wall 1 -60 0 40 0 5 z 5 55 group foot
+saltdem/wall 1 50 0 150 0 5 z 5 55 group hang
+pair_style saltdem/cohesive
+pair_coeff * * 1e9 0 0.5 0 0 0
+timestep 0.1
+fix f hang saltdem/{style}
+thermo_style custom step f_f[1]
+thermo 1
+run 20
+"""
+
+
+@pytest.mark.parametrize("style", ["fault dip 30 rate 20 target 25 taper 15 45",
+                                   "blocks rate 20 target 25 taper 15 45 block hang slip 30 right"])
+def test_taper_lets_the_throw_die_out_along_strike(lmp, style):
+    """taper 15 45: the whole slip at z <= 15, none at z >= 45, linear between (a fault that
+    dies out along strike); velocities scale with it."""
+    r = lmp(wall_deck("", zb="f", extra=TAPER.format(style=style)))
+    check_ok(r)
+    f = read_dump(r.workdir / "walls.txt")
+    hang = f["x"] > 45.0
+    z = f["z"][hang]
+    frac = np.clip((45.0 - z) / 30.0, 0.0, 1.0)
+    assert set(np.round(frac, 6)) > {0.0, 1.0}          # rows with the whole, part and no slip
+    a = math.radians(30.0)
+    x0 = 50.0 + 10.0 * np.round((f["x"][hang] - 25.0 * frac * math.cos(a) - 50.0) / 10.0)
+    np.testing.assert_allclose(f["x"][hang], x0 + 25.0 * frac * math.cos(a), atol=1e-9)
+    np.testing.assert_allclose(f["y"][hang], -25.0 * frac * math.sin(a), atol=1e-9)
+    assert np.all(f["vx"] == 0.0)                       # at the target: at rest
+    assert np.all(f["y"][~hang] == 0.0)
+
+
+@pytest.mark.parametrize("style,zb,words", [
+    ("fault dip 30 rate 20 target 25 taper 15 45", "p", ["taper in a box periodic in z"]),
+    ("fault dip 30 rate 20 target 25 taper 15 15", "f", ["taper z0 = z1 = 15"]),
+    ("blocks rate 20 target 25 taper 15 45 block hang rotate 100 0 0.5", "f",
+     ["a block that turns (rotate, tilt) cannot be tapered"]),
+])
+def test_bad_taper_is_refused(lmp, style, zb, words):
+    extra = TAPER.format(style=style)
+    if zb == "p":
+        extra = extra.replace(" z 5 55", "")
+    assert_error(lmp(wall_deck("", zb=zb, extra=extra)), *words)
+
+
+def test_taper_in_a_2d_deck_is_refused(lmp):
+    deck = """units si
+dimension 2
+atom_style sphere
+boundary f f p
+region box block -100 200 -100 200 -1 1
+create_box 1 box
+saltdem/wall 1 50 0 150 0 5 group hang
+fix f hang saltdem/fault dip 30 rate 20 target 25 taper 0 10
+"""
+    assert_error(lmp(deck), "taper scales the motion along z (strike), a 3D option; this deck is 2D")

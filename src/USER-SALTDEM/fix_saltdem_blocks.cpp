@@ -39,10 +39,10 @@ static constexpr double DEG = M_PI / 180.0;
 FixSaltdemBlocks::FixSaltdemBlocks(LAMMPS *lmp, int narg, char **arg) :
     FixSaltdemMotion(lmp, narg, arg)
 {
-  usage =
-      fmt::format("fix ID group {} rate V target T [at_target stop|end] block GROUP [move VX VY] "
-                  "[slip DIP right|left] [rotate PX PY W] [scale F] [from D0] [to D1] [block ...]",
-                  style);
+  usage = fmt::format(
+      "fix ID group {} rate V target T [at_target stop|end] [taper Z0 Z1] block GROUP [move VX VY] "
+      "[slip DIP right|left] [rotate PX PY W] [scale F] [from D0] [to D1] [block ...]",
+      style);
   parse(narg, arg);
   if (blocks.empty()) error->all(FLERR, "Fix {}: no block given; usage: {}", style, usage);
   for (auto &b : blocks) {

@@ -34,7 +34,7 @@ FixSaltdemFault::FixSaltdemFault(LAMMPS *lmp, int narg, char **arg) :
 {
   has_toward = 1;
   usage = fmt::format("fix ID group {} dip D rate V target T [toward right|left] "
-                      "[at_target stop|end]",
+                      "[at_target stop|end] [taper Z0 Z1]",
                       style);
   parse(narg, arg);
   if (dip == 0.0) error->all(FLERR, "Fix {}: dip is required; usage: {}", style, usage);

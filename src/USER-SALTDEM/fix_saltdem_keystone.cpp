@@ -39,7 +39,7 @@ FixSaltdemKeystone::FixSaltdemKeystone(LAMMPS *lmp, int narg, char **arg) :
     FixSaltdemMotion(lmp, narg, arg), dip(0.0), ikeystone(-1)
 {
   usage = fmt::format("fix ID group {} dip D keystone GROUP rate V target T "
-                      "[at_target stop|end]",
+                      "[at_target stop|end] [taper Z0 Z1]",
                       style);
   parse(narg, arg);
   if (dip == 0.0) error->all(FLERR, "Fix {}: dip is required; usage: {}", style, usage);

@@ -47,7 +47,7 @@ using namespace FixConst;
 
 FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), rate(0.0), target(0.0), end_run(0), ended(0), disp(0.0), sense(1),
-    has_toward(0), warned(0)
+    has_toward(0), warned(0), tapered(0), taper_z{0.0, 0.0}
 {
   time_integrate = 1;
   vector_flag = 1;
@@ -59,6 +59,15 @@ FixSaltdemMotion::FixSaltdemMotion(LAMMPS *lmp, int narg, char **arg) :
 void FixSaltdemMotion::parse(int narg, char **arg)
 {
   for (int iarg = 3; iarg < narg;) {
+    if (strcmp(arg[iarg], "taper") == 0) {
+      if (iarg + 3 > narg)
+        utils::missing_cmd_args(FLERR, fmt::format("fix {} taper", style), error);
+      taper_z[0] = number_arg("taper z0", arg[iarg + 1]);
+      taper_z[1] = number_arg("taper z1", arg[iarg + 2]);
+      tapered = 1;
+      iarg += 3;
+      continue;
+    }
     const int taken = (iarg + 1 < narg && parse_common(arg[iarg], arg[iarg + 1]))
         ? 2
         : parse_args(iarg, narg, arg);
@@ -70,6 +79,15 @@ void FixSaltdemMotion::parse(int narg, char **arg)
     error->all(FLERR, "Fix {}: rate = {} must be > 0 (m/s); usage: {}", style, rate, usage);
   if (target <= 0.0)
     error->all(FLERR, "Fix {}: target = {} must be > 0 (m); usage: {}", style, target, usage);
+  if (tapered && domain->dimension != 3)
+    error->all(FLERR,
+               "Fix {}: taper scales the motion along z (strike), a 3D option; this deck is 2D",
+               style);
+  if (tapered && taper_z[0] == taper_z[1])
+    error->all(FLERR,
+               "Fix {}: taper z0 = z1 = {}: give the z where the motion is whole and the "
+               "z where it has died out",
+               style, taper_z[0]);
 }
 
 int FixSaltdemMotion::parse_common(const std::string &kw, const std::string &val)
@@ -186,6 +204,18 @@ void FixSaltdemMotion::init()
       error->all(FLERR, "Fix {} {}: block group {} has no atoms", style, id,
                  group->names[b.igroup]);
 
+  if (tapered && domain->zperiodic)
+    error->all(FLERR,
+               "Fix {} {}: taper in a box periodic in z: the moving walls would meet walls of "
+               "another throw across the z boundary; make z non-periodic (boundary ... f) with "
+               "end walls",
+               style, id);
+  for (const auto &b : blocks)
+    if (tapered && b.omega != 0.0)
+      error->all(FLERR,
+                 "Fix {} {}: taper scales translations along strike; a block that turns "
+                 "(rotate, tilt) cannot be tapered",
+                 style, id);
   check_travel();
 
   // the step of the drive, here since the time step may change after the fix is defined
@@ -310,7 +340,7 @@ void FixSaltdemMotion::set_velocity(double speed)
     while (k >= 0 && !(disp >= blocks[k].from && disp < blocks[k].to)) k = blocks[k].next;
     // no phase holds the drive: at rest (the first phase's velocity times 0)
     const Block *b = &blocks[k >= 0 ? k : first];
-    const double s = k >= 0 ? speed : 0.0;
+    const double s = (k >= 0 ? speed : 0.0) * along(x[i][2]);
     for (int j = 0; j < 3; j++) v[i][j] = s * b->vel[j];
     if (b->omega != 0.0) {
       double p[2];
@@ -356,7 +386,8 @@ void FixSaltdemMotion::initial_integrate(int)
     pivot_at(b, disp, ps.p);
   }
   double **x = atom->x;
-  for (int i = 0; i < atom->nlocal; i++)
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double f = along(x[i][2]);
     for (int k = block_of(i); k >= 0; k = blocks[k].next) {
       const PhaseStep &ps = phase_steps[k];
       if (ps.ds == 0.0) continue;
@@ -366,8 +397,9 @@ void FixSaltdemMotion::initial_integrate(int)
         x[i][0] = ps.p[0] + ps.c * dx - ps.s * dy;
         x[i][1] = ps.p[1] + ps.s * dx + ps.c * dy;
       }
-      for (int j = 0; j < 3; j++) x[i][j] += ps.ds * b.vel[j];
+      for (int j = 0; j < 3; j++) x[i][j] += f * ps.ds * b.vel[j];
     }
+  }
   disp += step;
   set_velocity(disp < target ? rate : 0.0);
   if (disp >= target) {

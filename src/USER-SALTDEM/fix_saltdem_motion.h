@@ -73,6 +73,16 @@ class FixSaltdemMotion : public Fix {
   int sense;         // toward right|left: +1 the motion goes toward +x, -1 toward -x
   int has_toward;    // 1: the fix takes the keyword 'toward right|left' (set before parse())
   int warned;        // the warning that a step moves a block by much of a disc radius was given
+  // taper z0 z1 (3D): a disc's motion is scaled by 1 at z0 falling linearly to 0 at z1 (held
+  // beyond both): a throw that dies out along strike
+  int tapered;
+  double taper_z[2];
+  double along(double z) const
+  {
+    if (!tapered) return 1.0;
+    const double f = (taper_z[1] - z) / (taper_z[1] - taper_z[0]);
+    return f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+  }
   // a step that moves a block by more than this fraction of the smallest disc radius warns
   static constexpr double JUMP_FRACTION = 0.1;
   static constexpr double RESTART_VERSION = 1.0;    // layout of the restart data

@@ -52,9 +52,8 @@ void PairSaltdemViscous::limits_checked()
    constant 0.175 S rho h^2 / (correction eta) (viscfactor 1, rho the disc density) is the
    lowest limit measured (bench/validation/stable_limit.py: 0.177 at S 200 near the sound limit,
    0.197-0.211 in channels at S 5-80, 0.22-0.26 in the Expt 1 scene; Gershgorin's bound with
-   V = disc/0.7 is 0.1).  Spheres (3D) are stable at 0.063 viscous and 0.075 h/c sound (a plane
-   Couette channel), against 0.175 and 0.25 for discs: the 3D constants are those measured
-   (viscous) and 0.8 of it (sound).  CONTACT: a disc's tangential dashpot
+   V = disc/0.7 is 0.1).  Spheres (3D): 0.073, measured in a Couette channel of spheres (the
+   sound rule holds as for discs).  CONTACT: a disc's tangential dashpot
    also spins it (SaltDEM::rotation_factor), so dt < m / (g (1 + rot ratio)); measured
    1.26-1.55 times that, so 0.625 of it at viscfactor 1.  The default viscfactor 0.8 leaves a
    margin of 1.25 on both. */
@@ -68,7 +67,7 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
   const auto &p = params[i][j];
   const double c = elastic_factor(wall);
   const bool spheres = domain->dimension == 3;
-  const double cvisc = spheres ? 0.063 : 0.175, csound = spheres ? 0.06 : 0.25;
+  const double cvisc = spheres ? 0.073 : 0.175;
   if (p.kn > 0.0)
     consider_limit(c * sqrt(m / (p.kn * f2v)), best, why, [&] {
       return fmt::format("kn = {:.6g} of types {} {} with the lightest mass {:.6g} "
@@ -91,12 +90,12 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
     const double Gp = (p.mu_y > 0.0 || p.coh_y > 0.0) ? p.G : 0.0;
     if (p.K > 0.0) {
       const double c = sqrt((p.K + 4.0 * Gp / 3.0) * f2v / (0.7 * mv));
-      consider_limit(csound * p.h / c, best, why, [&] {
+      consider_limit(0.25 * p.h / c, best, why, [&] {
         return fmt::format("K = {:.6g}{} of types {} {} (sound speed {:.4g} with the inertial "
-                           "density; dt < {} h / c, h = {:.6g}); a larger dt needs a smaller "
+                           "density; dt < 0.25 h / c, h = {:.6g}); a larger dt needs a smaller "
                            "K{} or more inertia",
                            p.K, Gp > 0.0 ? fmt::format(" and plastic modulus G = {:.6g}", Gp) : "",
-                           i, j, c, csound, p.h, Gp > 0.0 ? " or G" : "");
+                           i, j, c, p.h, Gp > 0.0 ? " or G" : "");
       });
     }
   } else {

@@ -32,7 +32,8 @@
 # wall.txt and cmd.txt (the run's lmp command); OUT=DIR puts them under DIR instead of out/.
 # SALTMODEL=paper runs any series with the paper's salt (-var saltmodel paper) into
 # out/SERIES_PRESET_paper/.  A finished run (its 'done' file) is skipped; an interrupted one resumes from the newer of its
-# restart files that matches its checksum (the older one if the newer is damaged).  LMP (default build/lmp) and
+# restart files that matches its checksum (the older one if the newer is damaged); every segment
+# of a run reads the scene files it started with (its copy in scene-files/).  LMP (default build/lmp) and
 # MPIRUN (e.g. "mpirun -np 8") choose how lmp runs; ONLY="NAME ..." runs only those runs of
 # the series (e.g. to split a series between cores: one run-series.sh per core, each with its
 # own ONLY list).  DECKS=1 runs the paper's scenes from examples/expt*.in instead of their section
@@ -158,23 +159,34 @@ for r in "${runs[@]}"; do
   resume=()
   from=$(pick_restart "$out" "$deck" "$name")
   [ -n "$from" ] && resume=(-var restart "$from")
-  deckfile=$root/examples/$deck.in
+  # the run reads its scene files (decks, includes, materials, packer) from its own copy, taken
+  # at its first segment: an edit to the repository's files while it runs (LAMMPS reads an
+  # include again at each jump of its frame loop) or between segments does not reach it
+  snap=$out/scene-files
+  if [ ! -d "$snap" ]; then
+    rm -rf "$snap.tmp" && mkdir -p "$snap.tmp/examples" "$snap.tmp/tools"
+    cp -r "$root/examples/scene" "$root"/examples/*.in "$snap.tmp/examples/"
+    cp -r "$root/potentials" "$snap.tmp/" && cp "$root/tools/pack.in" "$snap.tmp/tools/"
+    mv "$snap.tmp" "$snap"
+  fi
+  deckfile=$snap/examples/$deck.in
   if [[ $deck == section:* ]]; then
     deck=${deck#section:}
-    "$py" "$root/python/saltdem-section" "$root/examples/sections/$deck.toml" -o "$out/$deck.in" > /dev/null
+    [ -f "$out/$deck.in" ] && [ -n "$from" ] || \
+      "$py" "$root/python/saltdem-section" "$root/examples/sections/$deck.toml" -o "$out/$deck.in" > /dev/null
     deckfile=$out/$deck.in
   fi
-  echo "run-series: $name (${deckfile#"$root"/} -var rate $rate $vars ${resume[*]}) in $out"
+  echo "run-series: $name (${deckfile#"$out"/} -var rate $rate $vars ${resume[*]}) in $out"
   make=""
   [ "$deckfile" = "$out/$deck.in" ] && make="python/saltdem-section examples/sections/$deck.toml -o $deck.in && "
-  lmpin=${deckfile#"$root"/}; [ -n "$make" ] && lmpin=$deck.in
+  lmpin=examples/$deck.in; [ -n "$make" ] && lmpin=$deck.in
   echo "${make}lmp -in $lmpin -var preset $preset -var rate $rate $vars" | tr -s ' ' | sed 's/ $//' > "$out/cmd.txt"
   start=$(date +%s)
   # segment number from the segments' own output (a killed one left its stdout but no wall time)
   seg=$(( $(find "$out" -maxdepth 1 -name 'stdout.*.txt' | wc -l) + 1 ))    # log.lammps, log.2.lammps, ...
   log=log.lammps; [ "$seg" -gt 1 ] && log=log.$seg.lammps
   # shellcheck disable=SC2086
-  (cd "$out" && ${MPIRUN:-} "$lmp" -in "$deckfile" -var root "$root" \
+  (cd "$out" && ${MPIRUN:-} "$lmp" -in "$deckfile" -var root "$snap" \
       -var preset "$preset" -var rate "$rate" $vars "${resume[@]}" -log "$log" "$@" > stdout.$seg.txt)
   echo "$(( $(date +%s) - start ))" >> "$out/wall_segments.txt"
   faults=(--fault-x 3125); [ "$deck" = expt2 ] && faults=(--fault-x 5000 7500)

@@ -182,6 +182,11 @@ def test_series_runner_contact_only_list(tmp_path):
         assert f"examples/sections/{deck}.toml" in (d / "cmd.txt").read_text()
         assert (d / "done").exists() and (d / "outcomes" / "outcomes.json").exists()
         assert "scene: salt law contact" in (d / "stdout.1.txt").read_text()
+        # the run read its own copy of the scene files (an edit to the repository's files while
+        # it runs, or between its segments, does not reach it)
+        for f in ("examples/scene/frames.in", "examples/expt3.in", "potentials/cover_paper.params",
+                  "tools/pack.in"):
+            assert (d / "scene-files" / f).read_text() == (ROOT / f).read_text()
 
 
 @pytest.mark.parametrize("name", ["expt1", "expt2"])

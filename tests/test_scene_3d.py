@@ -98,6 +98,8 @@ def test_sphere_pack_fills_the_slab(tmp_path):
 @pytest.mark.parametrize("var,words", [
     (dict(dim=3, D=100), "a 3D pack needs a depth D (m) of at least 4 rmax = 250 m"),
     (dict(dim=4), "pack: dim = 4 must be 2 or 3"),
+    (dict(dim=3, D=250, kn=2.1875e11, phiL=0.75), "spheres found room in the starting column; lower phiL"),
+    (dict(dim=3, D=250, kn=2.1875e11, phi0=0.3), "below H = 400 m: raise phi0"),
 ])
 def test_bad_pack_is_refused(tmp_path, var, words):
     p = pack_deck(tmp_path, check=False, **var)

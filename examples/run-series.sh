@@ -157,7 +157,7 @@ for r in "${runs[@]}"; do
   if [ -f "$out/done" ]; then echo "run-series: $name done already ($out)"; continue; fi
   mkdir -p "$out"
   resume=()
-  from=$(pick_restart "$out" "$deck" "$name")
+  from=$(pick_restart "$out" "${deck#section:}" "$name")    # (a section writes its restart files under its own name)
   [ -n "$from" ] && resume=(-var restart "$from")
   # the run reads its scene files (decks, includes, materials, packer) from its own copy, taken
   # at its first segment: an edit to the repository's files while it runs (LAMMPS reads an

@@ -43,7 +43,7 @@ def assert_same_end(wd, ref, xtol, vtol):
         np.testing.assert_allclose(b[c], a[c], rtol=0, atol=tol * np.abs(a[c]).max(), err_msg=c)
 
 
-def assert_resumed_correctly(wd, restart, uninterrupted, tmp_path):
+def assert_resumed_correctly(wd, restart, uninterrupted, tmp_path, deck=None):
     """wd, a series run resumed from the file `restart` (a saved copy), has every frame of the
     uninterrupted run and ends exactly where a plain resume from that file ends.  (A restart
     in the middle of a run perturbs it at round-off, which the flow then amplifies: against the
@@ -54,7 +54,9 @@ def assert_resumed_correctly(wd, restart, uninterrupted, tmp_path):
     ref.mkdir()
     for p in [restart, restart.with_name(restart.name + ".sha256"), *uninterrupted.glob("pack_*")]:
         shutil.copy(p, ref / p.name)
-    run_deck("expt1.in", ref, restart=restart.name, **VARS)
+    # (resumed by the deck that wrote the file: a restart file holds its motion fix's state
+    # under that deck's fix ID and style)
+    run_deck(deck or "expt1.in", ref, restart=restart.name, **VARS)
     assert_same_end(wd, ref, 1e-12, 1e-12)
     assert_same_end(wd, uninterrupted, 1e-6, 1e-4)
 
@@ -127,11 +129,12 @@ def test_damaged_restart_is_refused_naming_the_other_file(partial, tmp_path, kin
     assert frame_steps(wd) == frames, "frames written after a refused resume"
 
 
-def series(out, *extra, env_extra=None, timeout=600, popen=False):
+def series(out, *extra, env_extra=None, timeout=600, popen=False, decks="1"):
     cmd = ["bash", str(ROOT / "examples" / "run-series.sh"), "expts", "tiny", "--",
            "-var", "restart_disp", str(VARS["restart_disp"]), *extra]
-    # DECKS=1: from examples/expt1.in, the deck the partial runs were made with
-    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), OUT=str(out), ONLY="expt1", DECKS="1",
+    # DECKS=1: from examples/expt1.in, the deck the partial runs were made with (0: from its
+    # section description, the same trajectory)
+    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), OUT=str(out), ONLY="expt1", DECKS=decks,
                **(env_extra or {}))
     if popen:
         return subprocess.Popen(cmd, cwd=out, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
@@ -173,14 +176,16 @@ def test_series_stops_when_no_restart_file_is_sound(partial, tmp_path):
     assert not (run / "done").exists()
 
 
-def test_series_killed_mid_segment_resumes_to_the_uninterrupted_end(reference, tmp_path):
+@pytest.mark.parametrize("decks", ["1", "0"])
+def test_series_killed_mid_segment_resumes_to_the_uninterrupted_end(reference, tmp_path, decks):
     """SIGKILL to the whole series (runner and lmp) once a restart file and its checksum are
     there and the run has gone on past it; the same command again ends where the
-    uninterrupted run ends, with all of its frames."""
+    uninterrupted run ends, with all of its frames.  Both from the deck and from the section
+    description (the runner's default for the paper's scenes)."""
     out = tmp_path / "out"
     out.mkdir()
     run = out / "expts_tiny" / "expt1"
-    p = series(out, popen=True)
+    p = series(out, popen=True, decks=decks)
     try:
         t0 = time.monotonic()
         while not list(run.glob("expt1.restart.*.sha256")):
@@ -194,12 +199,13 @@ def test_series_killed_mid_segment_resumes_to_the_uninterrupted_end(reference, t
     assert not (run / "done").exists(), "the run ended before it was killed: kill it earlier"
     saved = tmp_path / "saved"
     shutil.copytree(run, saved)
-    r = series(out)
+    r = series(out, decks=decks)
     assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
     used = re.search(r"-var restart (expt1\.restart\.[ab])", r.stdout).group(1)
     assert f"scene: resumed from {used}" in (run / "stdout.2.txt").read_text()
     assert (run / "stdout.1.txt").exists()    # the killed segment's output is kept
-    assert_resumed_correctly(run, saved / used, reference, tmp_path)
+    assert_resumed_correctly(run, saved / used, reference, tmp_path,
+                             deck=None if decks == "1" else run / "expt1.in")
 
 
 # ---------------------------------------------------------------------------------------------

@@ -228,7 +228,8 @@ def test_a_restart_file_of_another_deck_is_refused(tmp_path):
     d = write_deck(ROOT / "examples" / "sections" / "expt1.toml", tmp_path / "s.in")
     r = run_deck(d, wd, "-var", "restart", newest.name)
     assert r.returncode == 1
-    assert "holds no drive displacement for this deck's motion fix" in r.stdout
+    assert "holds no drive displacement for the motion fix of this deck" in r.stdout
+    assert "scene: the restart file" in r.stdout and "Unmatched" not in r.stdout
 
 
 def test_the_how_to_example_is_the_staircase_section():

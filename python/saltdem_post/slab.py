@@ -18,7 +18,7 @@ from scipy.spatial import cKDTree
 
 from .dump import Box, Frame, match_ids
 from .materials import MaterialMap
-from .strain import StrainField, _wrap, deformation_gradient
+from .strain import StrainField, wrap_periodic, deformation_gradient
 
 __all__ = ["section_at", "map_view", "map_view_figure", "default_width", "default_cell"]
 
@@ -57,7 +57,7 @@ def section_at(frame: Frame, z0: float, width: Optional[float] = None) -> Frame:
     width = default_width(frame) if width is None else float(width)
     if not width > 0:
         raise ValueError(f"section width {width:g} m: give a positive width (default one median diameter)")
-    keep = np.abs(_wrap(z - z0, _period_z(frame))) <= 0.5 * width
+    keep = np.abs(wrap_periodic(z - z0, _period_z(frame))) <= 0.5 * width
     box = Box(frame.box.lo.copy(), frame.box.hi.copy(), frame.box.tilt.copy(), frame.box.boundary)
     box.lo[2], box.hi[2] = z0 - 0.5 * width, z0 + 0.5 * width
     data = {k: v[keep] for k, v in frame.data.items() if k not in _Z_COLUMNS}
@@ -145,7 +145,7 @@ def map_view(ref: Frame, cur: Frame, cell: Optional[float] = None, radius: Optio
     x = np.column_stack([_z(cover_cur)[ib], cover_cur.x[ib]])
     P, P_cur = grid.period, _period_z(cur)
     u = x - X
-    u[:, 0] = _wrap(u[:, 0], P_cur)
+    u[:, 0] = wrap_periodic(u[:, 0], P_cur)
 
     # Members of each cell's neighbourhood (reference positions).
     centres = np.column_stack([np.repeat(grid.z, grid.nx), np.tile(grid.x, grid.nz)])
@@ -161,7 +161,7 @@ def map_view(ref: Frame, cur: Frame, cell: Optional[float] = None, radius: Optio
     # fit at that node is then the least-squares affine fit (translation included) of the cell.
     n = np.maximum(np.bincount(cell_of, minlength=len(centres)), 1)
     offset = X[member] - centres[cell_of]
-    offset[:, 0] = _wrap(offset[:, 0], P)
+    offset[:, 0] = wrap_periodic(offset[:, 0], P)
     node_ref = centres + np.column_stack([np.bincount(cell_of, offset[:, k], len(centres)) / n for k in (0, 1)])
     node_cur = node_ref + np.column_stack([np.bincount(cell_of, u[member, k], len(centres)) / n for k in (0, 1)])
     nodes = len(X) + np.arange(len(centres))

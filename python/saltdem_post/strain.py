@@ -45,8 +45,8 @@ def default_radius(frame: Frame) -> float:
     return RADIUS_IN_DISC_RADII * float(np.median(frame.radius))
 
 
-def _wrap(d: np.ndarray, period: Optional[float]) -> np.ndarray:
-    """Minimum-image convention along a periodic x axis."""
+def wrap_periodic(d: np.ndarray, period: Optional[float]) -> np.ndarray:
+    """Minimum-image convention along a periodic axis (period None or 0: not periodic)."""
     if period:
         d = d - period * np.round(d / period)
     return d
@@ -99,8 +99,8 @@ def deformation_gradient(ref_xy: np.ndarray, cur_xy: np.ndarray, pairs: Tuple[np
     i, j = pairs
     dX = ref_xy[j] - ref_xy[i]
     dx = cur_xy[j] - cur_xy[i]
-    dX[:, 0] = _wrap(dX[:, 0], period_x[0])
-    dx[:, 0] = _wrap(dx[:, 0], period_x[1])
+    dX[:, 0] = wrap_periodic(dX[:, 0], period_x[0])
+    dx[:, 0] = wrap_periodic(dx[:, 0], period_x[1])
 
     def acc(w):
         # A pair contributes the same outer products to both ends (signs cancel).

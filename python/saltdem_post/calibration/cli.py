@@ -253,6 +253,11 @@ def _parser() -> argparse.ArgumentParser:
                     help="inertia factor S of the cover discs (fix saltdem/nve inertia; default 1)")
     bx.add_argument("--strain-max", type=float, default=BIAXIAL_STRAIN,
                     help="axial strain at the end of a test (default %(default)s)")
+    bx.add_argument("--dim", type=int, choices=(2, 3), default=2,
+                    help="2: biaxial tests of discs (default); 3: triaxial tests of spheres (biaxial.in -var dim 3, "
+                         "contact laws x (rmin + rmax) as in the 3D scenes)")
+    bx.add_argument("--depth", type=float, metavar="D",
+                    help="3D: sample depth along z in m (default: the width W)")
 
     def add(name, parents, help_):
         s = sub.add_parser(name, parents=parents, help=help_, description=help_)

@@ -131,21 +131,35 @@ def sample_spec(preset: str, args) -> dict:
     if getattr(args, "confinements", None):
         s["confinements"] = tuple(c * MPA for c in args.confinements)
     s["rscale"] = s["rmin"] / PAPER_RADII[0]
+    if getattr(args, "dim", 2) == 3:
+        # a 3D triaxial test (biaxial.in -var dim 3): a box W x H x D of spheres
+        s["dim"], s["D"] = 3, float(getattr(args, "depth", None) or s["W"])
     return s
+
+
+def is_3d(sample: dict) -> bool:
+    return sample.get("dim", 2) == 3
 
 
 def make_packs(ctx: Context, sample: dict, kn: float) -> Dict[int, Path]:
     d = ensure_dir(str(ctx.out / "packs"))
     packs, jobs = {}, []
+    extra = {}
+    size = f"{sample['W']:g}x{sample['H']:g}"
+    if is_3d(sample):
+        # spheres settle with the 3D stiffness: kn per metre of thickness x (rmin + rmax), as the deck scales it
+        kn = kn * (sample["rmin"] + sample["rmax"])
+        extra = dict(dim=3, D=sample["D"])
+        size = f"3d_{size}x{sample['D']:g}"
     for seed in sample["seeds"]:
-        name = (f"pack_{sample['W']:g}x{sample['H']:g}_r{sample['rmin']:g}-{sample['rmax']:g}{sample['dist']}"
+        name = (f"pack_{size}_r{sample['rmin']:g}-{sample['rmax']:g}{sample['dist']}"
                 f"_kn{kn:g}_s{seed}.data")
         p = Path(d) / name
         packs[seed] = p
         if not p.exists():
             jobs.append(Job(pack_tool(ctx), Path(d) / f"make_{p.stem}", dict(W=sample["W"], H=sample["H"],
                             rmin=sample["rmin"], rmax=sample["rmax"], dist=sample["dist"], seed=seed, kn=kn,
-                            out=p), f"pack {name}"))
+                            out=p, **extra), f"pack {name}"))
     run_jobs(ctx, jobs)
     for p in packs.values():
         if not p.exists():
@@ -176,6 +190,8 @@ def biaxial_set(ctx: Context, material: Dict[str, float], sample: dict, label: s
             v.update(pack=packs[seed], W=sample["W"], H=sample["H"], rmin=sample["rmin"], rmax=sample["rmax"],
                      dist=sample["dist"],
                      sigma3=s3, erate=erate, strain_max=strain_max, S_cover=inertia, tag="t")
+            if is_3d(sample):
+                v.update(dim=3, D=sample["D"])
             jobs.append(Job(decks(ctx) / "biaxial.in", root / f"s{s3 / MPA:g}MPa_seed{seed}", v,
                             f"biaxial {label} sigma3 {s3 / MPA:g} MPa pack {seed}"))
     run_jobs(ctx, jobs)
@@ -183,7 +199,7 @@ def biaxial_set(ctx: Context, material: Dict[str, float], sample: dict, label: s
     for j in jobs:
         curve = BiaxialCurve.read(j.workdir / "biaxial_t.txt")
         pk = find_peak(curve)
-        m = re.search(r"biaxial: (\d+) discs", j.output)
+        m = re.search(r"biaxial: (\d+) (?:discs|spheres)", j.output)
         tests.append(dict(sigma3_target=j.variables["sigma3"], seed=j.variables.get("pack").name.split("_s")[-1]
                           .split(".")[0], dir=str(j.workdir.relative_to(ctx.out)), discs=int(m.group(1)) if m else None,
                           peak=pk.to_dict(), seconds=j.seconds,
@@ -203,7 +219,8 @@ def biaxial_set(ctx: Context, material: Dict[str, float], sample: dict, label: s
                erate=erate, strain_max=strain_max, inertia=inertia, tests=tests, fit=fit.to_dict(), residual_fit=res,
                seconds=sum(t["seconds"] for t in tests))
     say(f"biaxial {label}: phi = {fit.phi:.2f} +- {fit.phi_err:.2f} deg, C = {fit.cohesion / MPA:.3f} +- "
-        f"{fit.cohesion_err / MPA:.3f} MPa ({len(tests)} tests, {sample['rmin']:g}-{sample['rmax']:g} m discs, "
+        f"{fit.cohesion_err / MPA:.3f} MPa ({len(tests)} tests, {sample['rmin']:g}-{sample['rmax']:g} m "
+        f"{'spheres, 3D' if is_3d(sample) else 'discs'}, "
         f"inertia x {inertia:g})")
     return out
 

@@ -122,7 +122,8 @@ def matched_comparison(bx: dict) -> List[str]:
     rows = []
     for label, r in bx.items():
         if label == "full" or r["sample"]["rmin"] != full["sample"]["rmin"] or \
-                r["sample"]["W"] != full["sample"]["W"] or r["sample"].get("dist") != full["sample"].get("dist"):
+                r["sample"]["W"] != full["sample"]["W"] or r["sample"].get("dist") != full["sample"].get("dist") or \
+                r["sample"].get("dim", 2) != full["sample"].get("dim", 2):
             continue
         seeds = {t["seed"] for t in r["tests"]}
         same = [t for t in full["tests"] if t["seed"] in seeds and
@@ -143,10 +144,12 @@ def matched_comparison(bx: dict) -> List[str]:
 
 def biaxial_section(out: Path, label: str, r: dict, targets: Optional[dict]) -> List[str]:
     s, f, m = r["sample"], r["fit"], r["material"]
-    L = [f"### Biaxial set `{label}`", "",
-         f"Packs of {s['W']:g} m x {s['H']:g} m (tools/pack.in, seeds {', '.join(str(x) for x in s['seeds'])}), "
+    d3 = s.get("dim", 2) == 3
+    L = [f"### Biaxial set `{label}`" + (" (3D triaxial tests)" if d3 else ""), "",
+         f"Packs of {s['W']:g} m x {s['H']:g} m" + (f" x {s['D']:g} m" if d3 else "") +
+         f" (tools/pack.in, seeds {', '.join(str(x) for x in s['seeds'])}), "
          f"radii {s['rmin']:g}-{s['rmax']:g} m ({s.get('dist', 'uniform')} distribution), {min(t['discs'] for t in r['tests'])}-"
-         f"{max(t['discs'] for t in r['tests'])} discs per sample; axial strain "
+         f"{max(t['discs'] for t in r['tests'])} {'spheres' if d3 else 'discs'} per sample; axial strain "
          f"rate {r['erate']:.3g} 1/s to {100 * r['strain_max']:g} %; cover inertia factor "
          f"S = {r.get('inertia', 1.0):g}; {len(r['tests'])} tests, "
          f"{r['seconds']:.0f} s of lmp time in all.", "",

@@ -151,3 +151,20 @@ def test_pair_cost_reports_every_style_per_interacting_pair(tmp_path):
     # the same pack: both granular styles see the same contacts
     assert res["cohesive"]["pairs"] == pytest.approx(res["hooke"]["pairs"], rel=0.05)
     assert "ns/pair" in p.stdout
+
+
+def test_pair_cost_in_3d(tmp_path):
+    """--D: the same benchmark on a sphere pack: spheres touch about 4-8 others, the salt's
+    kernel (1.3 sphere spacings) holds about 40-90; a finite cost per pair; no timings asserted."""
+    js = tmp_path / "r.json"
+    p = run_cmd(["/usr/bin/python3", str(ROOT / "bench" / "performance" / "pair_cost.py"), "--lmp", lmp_path(),
+                 "--work", str(tmp_path), "--W", "300", "--H", "150", "--D", "100", "--nsteps", "20",
+                 "--styles", "hooke,cohesive,viscous", "--json", str(js)], capture_output=True, text=True,
+                timeout=600, env=dict(os.environ, PYTHONPATH=str(ROOT / "python")))
+    assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
+    res = json.loads(js.read_text())
+    for name, r in res.items():
+        assert math.isfinite(r["ns_per_pair"]) and r["ns_per_pair"] > 0, (name, r)
+        lo, hi = (40, 90) if name == "viscous" else (4, 8)
+        assert lo < r["pairs_per_atom"] < hi, (name, r["pairs_per_atom"])
+    assert res["cohesive"]["pairs"] == pytest.approx(res["hooke"]["pairs"], rel=0.05)

@@ -21,7 +21,7 @@ SIGMA3 = 2e6
 # the periodic edges are trimmed; 0.6 % axial strain at 5e-3 1/s (the calibration's strain rate is
 # 5e-4: this one checks the machinery, not the material)
 TINY = dict(dim=3, W=125, H=250, D=125, rmin=6.25, rmax=15.625, dist="uniform", seed=11,
-            sigma3=SIGMA3, erate=5e-3, strain_max=0.006, nout=25, tag="t")
+            sigma3="2e6", erate=5e-3, strain_max=0.006, nout=25, tag="t")
 FLOAT = r"([-+0-9.eE]+)"
 
 
@@ -111,7 +111,7 @@ def test_bad_input_stops_before_running(tmp_path, var, words):
 def test_depth_is_ignored_in_2d(tmp_path):
     """dim 2 with a D that 3D would refuse: the 2D biaxial test of discs runs."""
     rc, out = run_deck(tmp_path, dim=2, D=10, W=100, H=200, rmin=6.25, rmax=15.625, dist="uniform",
-                       sigma3=SIGMA3, erate=5e-3, strain_max=0.002, nout=20, tag="t")
+                       sigma3="2e6", erate=5e-3, strain_max=0.002, nout=20, tag="t")
     assert rc == 0, out[-2000:]
     assert re.search(r"biaxial: \d+ discs, sample 100 x", out)
     assert (tmp_path / "biaxial_t.txt").read_text().startswith("# biaxial test: sigma3_target 2e6 Pa")
@@ -123,21 +123,21 @@ def test_calibrate_tool_runs_3d_sets(tmp_path):
     curves, and fits (two confinements: the line through two points)."""
     out = tmp_path / "cal"
     cmd = [sys.executable, str(TOOL), "-q", "-o", str(out), "--lmp", lmp_path(), "biaxial", "--preset", "ci",
-           "--dim", "3", "--size", "125", "250", "--radii", "6.25", "15.625", "--dist", "uniform", "--seeds", "11",
-           "--confinements", "1", "2", "--erate", "5e-3", "--strain-max", "0.004", "--label", "t3d"]
+           "--dim", "3", "--size", "100", "200", "--radii", "6.25", "15.625", "--dist", "uniform", "--seeds", "11",
+           "--confinements", "1", "2", "--erate", "5e-3", "--strain-max", "0.002", "--label", "t3d"]
     p = run_cmd(cmd, capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stdout + p.stderr
     assert "biaxial t3d: phi" in p.stdout and "spheres, 3D" in p.stdout
     r = json.loads((out / "results.json").read_text())["biaxial"]["t3d"]
-    assert r["sample"]["dim"] == 3 and r["sample"]["D"] == 125
+    assert r["sample"]["dim"] == 3 and r["sample"]["D"] == 100
     packs = [f.name for f in (out / "packs").glob("*.data")]
-    assert packs == ["pack_3d_125x250x125_r6.25-15.625uniform_kn5.46875e+10_s11.data"], packs
+    assert packs == ["pack_3d_100x200x100_r6.25-15.625uniform_kn5.46875e+10_s11.data"], packs
     assert len(r["tests"]) == 2
     for t in r["tests"]:
-        assert 150 <= t["discs"] <= 400
+        assert 60 <= t["discs"] <= 250
         assert t["peak"]["q"] > 0
         assert t["peak"]["sigma3"] == pytest.approx(t["sigma3_target"], rel=0.05)
         cmdline = (out / t["dir"] / "command.sh").read_text()
-        assert "-var dim 3 -var D 125" in cmdline
+        assert "-var dim 3 -var D 100" in cmdline
         assert "3D triaxial test" in (out / t["dir"] / "log.lammps").read_text()
     assert "(3D triaxial tests)" in (out / "report.md").read_text()

@@ -10,10 +10,14 @@ granular styles (compute contact/atom), pairs within the kernel's 2h = 56 m for 
 the salt includes its kernel-moment and density passes and the sub-steps) over steps x pairs.
 
   PYTHONPATH=python python3 bench/performance/pair_cost.py [--lmp build/lmp] [--work out/pair_cost] [--nsteps 2000]
-        [--W 800 --H 750] [--styles hooke,cohesive,viscous,viscous2] [--json FILE]
+        [--W 800 --H 750] [--D 200] [--styles hooke,cohesive,viscous,viscous2] [--json FILE]
+
+--D DEPTH: the same in 3D, a sphere pack DEPTH m deep along z (stiffnesses x rmin + rmax as the
+3D scenes, the kernel 1.3 sphere spacings).
 """
 import argparse
 import json
+import math
 import pathlib
 import re
 import subprocess
@@ -66,6 +70,7 @@ def main():
     ap.add_argument("--nsteps", type=int, default=2000)
     ap.add_argument("--W", type=float, default=800.0)
     ap.add_argument("--H", type=float, default=750.0)
+    ap.add_argument("--D", type=float, help="3D: a sphere pack this deep along z (m)")
     ap.add_argument("--styles", default="hooke,cohesive,viscous,viscous2")
     ap.add_argument("--json")
     args = ap.parse_args()
@@ -73,11 +78,20 @@ def main():
         ap.error("--nsteps must be >= 1")
     work = pathlib.Path(args.work).resolve()
     lmp = str(pathlib.Path(args.lmp).resolve())
-    pack = make_pack(lmp, work / "packs", args.W, args.H, 6.25, 15.625)
+    pack = make_pack(lmp, work / "packs", args.W, args.H, 6.25, 15.625, D=args.D)
     styles = args.styles.replace(",", " ")
+    dim = []
+    if args.D:
+        # the kernel of the 3D scenes: 1.3 spacings of spheres of the pack's mean volume (0.62)
+        text = pack.read_text()
+        rows = text.split("Atoms")[1].split("Velocities")[0].split("\n")
+        d = [float(r.split()[2]) for r in rows if len(r.split()) >= 7]
+        v = sum(math.pi / 6 * x ** 3 for x in d) / len(d)
+        dim = ["-var", "dim", "3", "-var", "zthick", str(6.25 + 15.625),
+               "-var", "h3", f"{1.3 * (v / 0.62) ** (1 / 3):.4f}"]
     subprocess.run([lmp, "-in", str(ROOT / "bench" / "performance" / "bench_pair.in"), "-log", "log.lammps",
                     "-screen", "none", "-nocite", "-var", "pack", str(pack), "-var", "nsteps",
-                    str(args.nsteps), "-var", "styles", styles], cwd=work, check=True)
+                    str(args.nsteps), "-var", "styles", styles, *dim], cwd=work, check=True)
     res = parse((work / "log.lammps").read_text())
     missing = [s for s in styles.split() if s not in res or "ns_per_pair" not in res[s]]
     if missing:

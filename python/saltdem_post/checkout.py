@@ -43,16 +43,21 @@ def lmp_path(root: Optional[Path] = None) -> str:
     return os.environ.get("SALTDEM_LMP", str(Path(root or repo()) / "build" / "lmp"))
 
 
-def make_pack(lmp: str, work: Path, W, H, rmin, rmax, seed=7, dist="uniform", root: Optional[Path] = None) -> Path:
-    """A settled pack of tools/pack.in on y = 0, made once and kept in work."""
+def make_pack(lmp: str, work: Path, W, H, rmin, rmax, seed=7, dist="uniform", root: Optional[Path] = None,
+              D=None) -> Path:
+    """A settled pack of tools/pack.in on y = 0, made once and kept in work; D: a 3D sphere pack
+    that deep along z (settled with the 2D stiffness times rmin + rmax, as the 3D scenes)."""
     work.mkdir(parents=True, exist_ok=True)
-    out = work / f"pack_{W}x{H}_{rmin}_{rmax}_{dist}_{seed}.data"
+    out = work / (f"pack_{W}x{H}_{rmin}_{rmax}_{dist}_{seed}.data" if D is None
+                  else f"pack_{W}x{H}x{D}_{rmin}_{rmax}_{dist}_{seed}.data")
     if not out.exists():
         tool = Path(root or repo()) / "tools" / "pack.in"
+        kn = 5e9 if D is None else 5e9 * (rmin + rmax)
+        dim = [] if D is None else ["-var", "dim", "3", "-var", "D", str(D)]
         subprocess.run([lmp, "-in", str(tool), "-log", "none", "-screen",
                         "none", "-nocite", "-var", "W", str(W), "-var", "H", str(H), "-var", "rmin",
                         str(rmin), "-var", "rmax", str(rmax), "-var", "dist", dist, "-var",
-                        "seed", str(seed), "-var", "kn", "5e9", "-var", "out", out.name + ".tmp"],
+                        "seed", str(seed), "-var", "kn", str(kn), "-var", "out", out.name + ".tmp", *dim],
                        cwd=work, check=True, stdout=subprocess.DEVNULL)
         (work / (out.name + ".tmp")).rename(out)
     return out

@@ -61,15 +61,17 @@ def test_bad_3d_walls_are_refused(lmp, cmd, zb, words):
     assert_error(lmp(wall_deck(cmd, zb=zb)), *words)
 
 
-def test_z_keyword_in_a_2d_deck_is_refused(lmp):
-    deck = """units si
+HEAD2 = """units si
 dimension 2
 atom_style sphere
 boundary f f p
 region box block -100 200 -100 200 -1 1
 create_box 1 box
-saltdem/wall 1 0 0 100 0 5 z 0 10
 """
+
+
+def test_z_keyword_in_a_2d_deck_is_refused(lmp):
+    deck = HEAD2 + "saltdem/wall 1 0 0 100 0 5 z 0 10\n"
     assert_error(lmp(deck), "'z Z0 Z1' extrudes a wall along z in a 3D deck; this deck is 2D")
 
 
@@ -117,17 +119,8 @@ def test_3d_strip_motion_two_ranks_match_serial(lmp):
         np.testing.assert_allclose(a[c], b[c], rtol=0, atol=1e-12)
 
 
-TAPER = """
-saltdem/wall 1 -60 0 40 0 5 z 5 55 group foot
-saltdem/wall 1 50 0 150 0 5 z 5 55 group hang
-pair_style saltdem/cohesive
-pair_coeff * * 1e9 0 0.5 0 0 0
-timestep 0.1
-fix f hang saltdem/{style}
-thermo_style custom step f_f[1]
-thermo 1
-run 20
-"""
+# the fault deck between given z (a box not periodic in z, as a taper needs)
+TAPER = FAULT3.replace(" 5 group foot", " 5 z 5 55 group foot").replace(" 5 group hang", " 5 z 5 55 group hang")
 
 
 @pytest.mark.parametrize("style", ["fault dip 30 rate 20 target 25 taper 15 45",
@@ -164,13 +157,7 @@ def test_bad_taper_is_refused(lmp, style, zb, words):
 
 
 def test_taper_in_a_2d_deck_is_refused(lmp):
-    deck = """units si
-dimension 2
-atom_style sphere
-boundary f f p
-region box block -100 200 -100 200 -1 1
-create_box 1 box
-saltdem/wall 1 50 0 150 0 5 group hang
+    deck = HEAD2 + """saltdem/wall 1 50 0 150 0 5 group hang
 fix f hang saltdem/fault dip 30 rate 20 target 25 taper 0 10
 """
     assert_error(lmp(deck), "taper scales the motion along z (strike), a 3D option; this deck is 2D")

@@ -180,7 +180,7 @@ for r in "${runs[@]}"; do
   make=""
   [ "$deckfile" = "$out/$deck.in" ] && make="python/saltdem-section examples/sections/$deck.toml -o $deck.in && "
   lmpin=examples/$deck.in; [ -n "$make" ] && lmpin=$deck.in
-  echo "${make}lmp -in $lmpin -var preset $preset -var rate $rate $vars" | tr -s ' ' | sed 's/ $//' > "$out/cmd.txt"
+  echo "${make}lmp -in $lmpin -var preset $preset -var rate $rate $vars $*" | tr -s ' ' | sed 's/ $//' > "$out/cmd.txt"
   start=$(date +%s)
   # segment number from the segments' own output (a killed one left its stdout but no wall time)
   seg=$(( $(find "$out" -maxdepth 1 -name 'stdout.*.txt' | wc -l) + 1 ))    # log.lammps, log.2.lammps, ...

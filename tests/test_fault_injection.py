@@ -204,6 +204,7 @@ def test_series_killed_mid_segment_resumes_to_the_uninterrupted_end(reference, t
     used = re.search(r"-var restart (expt1\.restart\.[ab])", r.stdout).group(1)
     assert f"scene: resumed from {used}" in (run / "stdout.2.txt").read_text()
     assert (run / "stdout.1.txt").exists()    # the killed segment's output is kept
+    assert "-var restart_disp 0.25" in (run / "cmd.txt").read_text()    # the runner's extra arguments
     assert_resumed_correctly(run, saved / used, reference, tmp_path,
                              deck=None if decks == "1" else run / "expt1.in")
 

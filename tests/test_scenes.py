@@ -2,6 +2,8 @@
 import os
 import shutil
 
+import re
+
 import numpy as np
 import pytest
 from scipy.spatial import cKDTree
@@ -233,6 +235,43 @@ def test_resume_keeps_or_sets_the_substeps(tmp_path):
     for c in ("x", "y", "vx", "vy"):
         np.testing.assert_array_equal(last[0][c], last[2][c])
     assert np.abs(last[1]["vx"] - last[2]["vx"]).max() > 0, "substeps 1 did not change the run"
+
+
+def test_resume_keeps_or_sets_implicit(tmp_path):
+    """-var implicit yes runs the salt's viscosity implicitly (the log says so, with its
+    iterations); a resumed run keeps the file's setting (auto, the default) or takes the one
+    given: auto and yes continue alike (to the bit), no turns it off."""
+    first = tmp_path / "first"
+    first.mkdir()
+    run_deck("expt1.in", first, preset="tiny", implicit="yes", f=1)
+    log = (first / "log.lammps").read_text()
+    assert "the viscosity in an implicit step" in log
+    assert re.search(r"implicit viscous step: [0-9.]+ iterations per step", log)
+    restart = max(first.glob("expt1.restart.[ab]"), key=lambda p: p.stat().st_mtime)
+    last = {}
+    for v in ("auto", "no", "yes"):
+        wd = tmp_path / v
+        wd.mkdir()
+        for p in first.glob("pack_*.data"):
+            (wd / p.name).write_bytes(p.read_bytes())
+        run_deck("expt1.in", wd, preset="tiny", implicit=v, restart=str(restart), f=1.5)
+        said = "the viscosity in an implicit step" in (wd / "log.lammps").read_text()
+        assert said == (v != "no"), f"-var implicit {v}: the log says otherwise"
+        last[v] = dumps(wd, "expt1")[-1]
+    for c in ("x", "y", "vx", "vy"):
+        np.testing.assert_array_equal(last["auto"][c], last["yes"][c])
+    assert np.abs(last["no"]["vx"] - last["yes"]["vx"]).max() > 0, "implicit no changed nothing"
+
+
+@pytest.mark.parametrize("args,msg", [(("implicit", "maybe"), "implicit maybe must be yes, no or auto"),
+                                      (("implicit", "yes", "saltlaw", "contact"),
+                                       "implicit yes is for the SPH salt")])
+def test_bad_implicit_stops(tmp_path, args, msg):
+    extra = [a for k, v in zip(args[::2], args[1::2]) for a in ("-var", k, v)]
+    r = run_cmd([lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-var", "root",
+                 str(ROOT), "-var", "preset", "tiny", *extra, "-log", "none", "-echo", "none"],
+                cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert r.returncode != 0 and msg in r.stdout, r.stdout[-1500:]
 
 
 def test_negative_substeps_stop(tmp_path):

@@ -269,8 +269,8 @@ def test_law_matches_equations(pack, tmp_path, case):
     K = 0.0 if case == "K0" else PAPER["K_salt"]
     deck = SNAP
     if case == "fill":    # contact walls, whose salt partners count with their fill (max 8)
-        deck = deck.replace("pair_style saltdem/viscous substeps ${substeps}\"",
-                            "pair_style saltdem/viscous fill 8 substeps ${substeps}\"")
+        deck = deck.replace("pair_style saltdem/viscous substeps ${substeps} ${popts}\"",
+                            "pair_style saltdem/viscous fill 8 substeps ${substeps} ${popts}\"")
         assert "fill 8" in deck
     if case in ("contact-walls", "fill"):
         deck = deck.replace("neigh_modify    exclude type 3 3",

@@ -76,10 +76,10 @@ int FixSaltdemDensity::setmask()
   return PRE_FORCE | MIN_PRE_FORCE | POST_FORCE | FINAL_INTEGRATE;
 }
 
-/* the pair style's viscous sub-steps (pair_style saltdem/viscous substeps N > 1), once every
-   force of the step is in: the sub-steps carry the other forces as constant, so that a steady
-   flow keeps its viscous stress (this fix is created at the first run, after the deck's
-   gravity and other force fixes) */
+/* the pair style's viscous sub-steps or implicit step (pair_style saltdem/viscous substeps
+   N > 1 or implicit yes), once every force of the step is in: both carry the other forces as
+   constant, so that a steady flow keeps its viscous stress (this fix is created at the first
+   run, after the deck's gravity and other force fixes) */
 
 void FixSaltdemDensity::setup(int)
 {
@@ -89,6 +89,13 @@ void FixSaltdemDensity::setup(int)
 void FixSaltdemDensity::post_force(int)
 {
   pair->apply_substeps();
+}
+
+/* the implicit viscous step's iterations over the run */
+
+void FixSaltdemDensity::post_run()
+{
+  pair->implicit_report();
 }
 
 void FixSaltdemDensity::init()

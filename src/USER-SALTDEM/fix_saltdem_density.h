@@ -53,6 +53,7 @@ class FixSaltdemDensity : public Fix {
   void setup_pre_force(int) override;
   void setup(int) override;
   void post_force(int) override;
+  void post_run() override;
   void final_integrate() override;
 
   void grow_arrays(int) override;

@@ -39,6 +39,8 @@ class PairSaltdem : public Pair {
   // the viscous sub-steps per time step of a style that has them (saltdem/timestep ...
   // substeps N); false: the style has none
   virtual bool set_substeps(int) { return false; }
+  // its implicit viscosity on or off (saltdem/timestep ... implicit yes|no); false: it has none
+  virtual bool set_implicit(bool) { return false; }
   PairSaltdem(class LAMMPS *, const char *style_name, const char *history_id);
   ~PairSaltdem() override;
 

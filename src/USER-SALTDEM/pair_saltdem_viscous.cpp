@@ -21,7 +21,7 @@
    (saltdem_contact_viscous.h), its law policy SaltDEM::ViscousLaw (saltdem_viscous_law.h);
    this file turns the requested viscosity into dashpot coefficients, sets the stable dt,
    keeps the restart data, and runs the SPH field passes (SaltDEM::SphFields) and the viscous
-   sub-steps (SaltdemViscousSubsteps) it owns.
+   sub-steps or implicit step (SaltdemViscousSplit) it owns.
 ------------------------------------------------------------------------- */
 
 #include "pair_saltdem_viscous.h"
@@ -35,7 +35,7 @@
 #include "saltdem_sph_fields.h"
 #include "saltdem_viscous_args.h"
 #include "saltdem_viscous_law.h"
-#include "saltdem_viscous_substeps.h"
+#include "saltdem_viscous_split.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -57,16 +57,20 @@ using namespace LAMMPS_NS;
 
 PairSaltdemViscous::PairSaltdemViscous(LAMMPS *lmp) :
     PairSaltdem(lmp, "saltdem/viscous", nullptr), params(nullptr), eta(nullptr),
-    fields(new SaltDEM::SphFields), substep(new SaltdemViscousSubsteps(lmp, this)),
+    fields(new SaltDEM::SphFields), substep(new SaltdemViscousSplit(lmp, this)),
     fix_density(nullptr), fix_plastic(nullptr), fluidself(nullptr), isfluid(nullptr), nmax(0),
     any_fluid(false), calibration(DEFAULT_CALIBRATION), correction(DEFAULT_CORRECTION),
     viscfactor(0.8), fill_max(DEFAULT_FILL_MAX), substeps(1), noslip_surface(false),
+    implicit(false), tolerance(DEFAULT_TOLERANCE), maxiter(DEFAULT_MAXITER),
     comm_mode(COMM_PRESSURE), calibration_checked(DEFAULT_CALIBRATION), salt_inertia(1.0)
 {
   // volume, boundary fill, pressure matrix and no-slip offset, or the sub-step velocities; the
   // kernel sums (and velocity-gradient sums) of ghosts (newton on), or their sub-step forces
   comm_forward = 2 + SaltDEM::NSYM + 3;
   comm_reverse = SaltDEM::SPH_NMOM_MAX + SaltDEM::PLASTIC_NVG_MAX;
+  // compute pair: the implicit step's iterations (last step, mean) and last residual
+  nextra = 3;
+  pvector = new double[nextra]();
 }
 
 PairSaltdemViscous::~PairSaltdemViscous()
@@ -76,6 +80,7 @@ PairSaltdemViscous::~PairSaltdemViscous()
   memory->destroy(eta);
   delete fields;
   delete substep;
+  delete[] pvector;
   memory->destroy(isfluid);
   memory->destroy(fluidself);
   // the salt's density and plastic stress are this pair style's state: they go with it
@@ -104,7 +109,28 @@ SaltDEM::ViscousLaw PairSaltdemViscous::law() const
 
 void PairSaltdemViscous::apply_substeps()
 {
-  if (substeps > 1 && any_fluid) substep->apply(substeps);
+  if (!any_fluid) return;
+  if (implicit) {
+    substep->implicit(tolerance, maxiter);
+    if (comm->me == 0) {
+      pvector[0] = substep->iter_last;
+      pvector[1] = substep->solves > 0.0 ? substep->iter_sum / substep->solves : 0.0;
+      pvector[2] = substep->resid_last;
+    }
+  } else if (substeps > 1)
+    substep->substeps(substeps);
+}
+
+void PairSaltdemViscous::implicit_report()
+{
+  if (!implicit || !any_fluid || substep->solves == 0.0) return;
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "Pair style {}: implicit viscous step: {:.1f} iterations per step over {:.0f} "
+                   "steps (last {}, residual {:.3g} of the explicit step's, tolerance {:.3g})\n",
+                   name, substep->iter_sum / substep->solves, substep->solves, substep->iter_last,
+                   substep->resid_last, tolerance);
+  substep->iter_sum = substep->solves = 0.0;
 }
 
 void *PairSaltdemViscous::pair_params(int i, int j)
@@ -152,7 +178,8 @@ void PairSaltdemViscous::settings(int narg, char **arg)
 
 SaltDEM::ViscousSettings PairSaltdemViscous::settings_now() const
 {
-  return {correction, calibration, dtfactor, viscfactor, fill_max, substeps, noslip_surface};
+  return {correction, calibration,    dtfactor, viscfactor, fill_max,
+          substeps,   noslip_surface, implicit, tolerance,  maxiter};
 }
 
 void PairSaltdemViscous::set_settings(const SaltDEM::ViscousSettings &st)
@@ -164,6 +191,14 @@ void PairSaltdemViscous::set_settings(const SaltDEM::ViscousSettings &st)
   fill_max = st.fill_max;
   substeps = st.substeps;
   noslip_surface = st.noslip_surface;
+  implicit = st.implicit;
+  tolerance = st.tolerance;
+  maxiter = st.maxiter;
+  if (implicit && substeps > 1)
+    error->all(FLERR,
+               "Pair style {}: implicit yes and substeps {} both take the viscosity out of the "
+               "force pass; choose one (implicit yes has no viscous step limit)",
+               name, substeps);
 }
 
 /* saltdem/timestep F substeps N: the sub-steps of a style read from a restart file too */
@@ -171,6 +206,20 @@ void PairSaltdemViscous::set_settings(const SaltDEM::ViscousSettings &st)
 bool PairSaltdemViscous::set_substeps(int n)
 {
   substeps = SaltDEM::parse_viscous_substeps(lmp, name, std::to_string(n).c_str(), MAX_SUBSTEPS);
+  if (implicit && substeps > 1)
+    error->all(FLERR,
+               "saltdem/timestep: substeps {} for pair style {}, whose viscosity is implicit "
+               "(implicit yes): it has no viscous step limit to lift",
+               substeps, name);
+  return true;
+}
+
+/* saltdem/timestep F implicit yes|no: likewise (implicit yes clears the sub-steps) */
+
+bool PairSaltdemViscous::set_implicit(bool on)
+{
+  implicit = on;
+  if (on) substeps = 1;
   return true;
 }
 
@@ -275,7 +324,7 @@ void PairSaltdemViscous::init_style()
   fields->noslip = noslip_surface;
   fields->plastic = any_plastic;
   fields->isplastic = isplastic.data();
-  fields->keep_pairs = substeps > 1;
+  fields->keep_pairs = substeps > 1 || implicit;
   // the sub-steps move the atoms that a fix integrates, with the inertia it gives them
   integrators = find_integrators();
   // (here, where every rank takes part: extract() may be called by one rank alone)
@@ -289,6 +338,11 @@ void PairSaltdemViscous::init_style()
   if (any_fluid && substeps > 1 && comm->me == 0)
     utils::logmesg(lmp, "Pair style {}: the viscosity in {} sub-steps per step (substeps)\n", name,
                    substeps);
+  if (any_fluid && implicit && comm->me == 0)
+    utils::logmesg(lmp,
+                   "Pair style {}: the viscosity in an implicit step (tolerance {:.3g}, maxiter "
+                   "{})\n",
+                   name, tolerance, maxiter);
   PairSaltdem::init_style();
 }
 
@@ -362,7 +416,7 @@ void PairSaltdemViscous::grow_arrays()
   nmax = MAX(nmax, atom->nmax);
   fields->grow(nmax);
   // (sub-steps may be switched on between runs: saltdem/timestep ... substeps N)
-  if (substeps > 1) substep->grow(nmax);
+  if (substeps > 1 || implicit) substep->grow(nmax);
 }
 
 /* a disc in a FLUID pair needs a radius: the material density m / r^dim weighs it */
@@ -442,7 +496,8 @@ void PairSaltdemViscous::derive(int i, int j)
   p.ih2 = (p.h > 0.0) ? 0.5 / p.h : 0.0;
   p.cW = SaltDEM::wendland_c2(domain->dimension, p.h > 0.0 ? p.h : 1.0, 0.0);
   p.kvisc = 2.0 * correction * e * p.cw;
-  p.kfac = (substeps > 1) ? 0.0 : p.kvisc;    // sub-stepped: not in the force pass
+  // sub-stepped or implicit: not in the force pass
+  p.kfac = (substeps > 1 || implicit) ? 0.0 : p.kvisc;
   p.gn = calibration * e;
   p.gt = p.ratio * p.gn;
   if (!std::isfinite(p.cw) || !std::isfinite(p.kvisc) || !std::isfinite(p.gn) ||

@@ -37,9 +37,9 @@ namespace SaltDEM {
 }    // namespace SaltDEM
 
 class PairSaltdemViscous : public PairSaltdem {
-  // the sub-steps read the fields, integrators and tallies of the style and use its
-  // communication
-  friend class SaltdemViscousSubsteps;
+  // the sub-steps and the implicit step read the fields, integrators and tallies of the style
+  // and use its communication
+  friend class SaltdemViscousSplit;
 
  public:
   PairSaltdemViscous(class LAMMPS *);
@@ -51,6 +51,7 @@ class PairSaltdemViscous : public PairSaltdem {
   double init_one(int, int) override;
   void *extract(const char *, int &) override;
   bool set_substeps(int n) override;
+  bool set_implicit(bool on) override;
   void pre_loop() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
@@ -68,8 +69,11 @@ class PairSaltdemViscous : public PairSaltdem {
   double fluid_h(int t) const;
   double fluid_K(int t) const;
   void kernel_density(double *out, double *interior);
-  // the viscous sub-steps (substeps > 1; the density fix calls it once all forces are in)
+  // the viscous sub-steps (substeps > 1) or implicit step (the density fix calls it once all
+  // forces are in)
   void apply_substeps();
+  // implicit: what it says at the end of a run (its iterations per step), and their count reset
+  void implicit_report();
   // the inertia factor S of the viscous discs (what extract("inertia") gives as of the last
   // init).  Collective: every rank must call it
   double find_salt_inertia();
@@ -79,15 +83,19 @@ class PairSaltdemViscous : public PairSaltdem {
   // FLUID mode: the Morris sum over a disordered polydisperse pack with volumes m/rho
   // returns eta_eff = 0.955 eta (channel flows, h = 1.45 spacings); this restores eta
   static constexpr double DEFAULT_CORRECTION = 1.047;
-  // FLUID: the most viscous sub-steps per step (SaltdemViscousSubsteps)
+  // FLUID: the most viscous sub-steps per step (SaltdemViscousSplit)
   static constexpr int MAX_SUBSTEPS = 64;
+  // FLUID, implicit: the residual the solve stops at, over the explicit step's, and the most
+  // iterations
+  static constexpr double DEFAULT_TOLERANCE = 1e-4;
+  static constexpr int DEFAULT_MAXITER = 200;
 
  protected:
   SaltDEM::ViscousParams **params;
   double **eta;    // requested viscosity per type pair (extract "eta": fix adapt, fixes)
-  SaltDEM::SphFields *fields;               // FLUID: the SPH field passes and their fields
-  class SaltdemViscousSubsteps *substep;    // FLUID, substeps > 1
-  std::vector<int> influid;                 // per type: in some FLUID pair (needs a radius)
+  SaltDEM::SphFields *fields;            // FLUID: the SPH field passes and their fields
+  class SaltdemViscousSplit *substep;    // FLUID, substeps > 1 or implicit
+  std::vector<int> influid;              // per type: in some FLUID pair (needs a radius)
   std::vector<double> scratch;    // no FLUID pair: what the force pass sums the (zero) q into
   class FixSaltdemDensity *fix_density;    // FLUID: the density (state) and d rho / dt
   std::string density_id;                  // its ID
@@ -104,6 +112,9 @@ class PairSaltdemViscous : public PairSaltdem {
   double fill_max;      // FLUID: the largest boundary fill (1: boundaries count as themselves)
   static constexpr double DEFAULT_FILL_MAX = 1.0;    // (off: see the pair's doc page)
   int substeps;               // FLUID: viscous sub-steps per time step (1: in the force pass)
+  bool implicit;              // FLUID: the viscosity in an implicit step (SaltdemViscousSplit)
+  double tolerance;           // implicit: residual over the explicit step's
+  int maxiter;                // implicit: the most iterations per step
   bool noslip_surface;        // FLUID: boundary partners extrapolate the fluid's velocity (noslip)
   Integrators integrators;    // the time integrators at init (find_integrators)
   // what the forward and reverse communication carries: the fields of the force pass
@@ -134,9 +145,9 @@ class PairSaltdemViscous : public PairSaltdem {
   void pair_limit(int, int, double, double, bool, double &, std::string &) override;
   // 2: the setting fill, 3: substeps, 4: noslip; layouts 1 and 3 are read (fill 1, substeps
   // 1, noslip centre); layout 2 was never released
-  // 5: the plastic strength (yield, modulus)
-  int restart_version() const override { return 5; }
-  std::vector<int> restart_versions_read() const override { return {1, 3, 4, 5}; }
+  // 5: the plastic strength (yield, modulus); 6: implicit, tolerance, maxiter
+  int restart_version() const override { return 6; }
+  std::vector<int> restart_versions_read() const override { return {1, 3, 4, 5, 6}; }
   std::vector<std::string> setting_names() const override;
   void pack_settings(double *) const override;
   void unpack_settings(const double *) override;

@@ -56,7 +56,7 @@ void PairSaltdemViscous::limits_checked()
    sound rule holds as for discs).  CONTACT: a disc's tangential dashpot
    also spins it (SaltDEM::rotation_factor), so dt < m / (g (1 + rot ratio)); measured
    1.26-1.55 times that, so 0.625 of it at viscfactor 1.  The default viscfactor 0.8 leaves a
-   margin of 1.25 on both. */
+   margin of 1.25 on both.  An implicit FLUID viscosity (implicit yes) has no limit. */
 
 void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall, double &best,
                                     std::string &why)
@@ -104,6 +104,7 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
                           "calibration = {:.6g}, ratio = {:.6g}, lightest mass {:.6g}",
                           viscfactor, rot, calibration, p.ratio, m);
   }
+  if (p.mode == SaltDEM::VISCOUS_FLUID && implicit) return;
   consider_limit(lim, best, why, [&] {
     // (the factor on S only where the step exceeds the limit: the error, not the log)
     return fmt::format(
@@ -113,6 +114,8 @@ void PairSaltdemViscous::pair_limit(int i, int j, double m, double mv, bool wall
         e, i, j, formula,
         update->dt > lim ? fmt::format(" with S >= {:.3g} times the present one", update->dt / lim)
                          : "",
-        p.mode == SaltDEM::VISCOUS_FLUID ? " or viscous sub-steps (substeps N)" : "");
+        p.mode == SaltDEM::VISCOUS_FLUID ? ", viscous sub-steps (substeps N) or an implicit "
+                                           "viscosity (implicit yes)"
+                                         : "");
   });
 }

@@ -18,7 +18,9 @@
    pair saltdem/viscous/omp: pair saltdem/viscous with its pair loop split between the
    OpenMP threads of the rank (-sf omp, package omp), as pair saltdem/cohesive/omp; the
    continuity sum d rho / dt is summed per thread into slices of its own and the slices are
-   added into the density fix's array after the loop.
+   added into the density fix's array after the loop.  The SPH field passes before it (kernel
+   moments) and the viscosity's sub-steps or implicit step after it run on the same threads
+   (SphFields::run_threads).
 ------------------------------------------------------------------------- */
 
 #include "pair_saltdem_viscous_omp.h"
@@ -38,6 +40,8 @@
 #include "timer.h"
 #include "update.h"
 
+#include <functional>
+
 #include "omp_compat.h"
 #if defined(_OPENMP)
 #include <omp.h>
@@ -50,12 +54,23 @@ PairSaltdemViscousOMP::PairSaltdemViscousOMP(LAMMPS *lmp) :
 {
   suffix_flag |= Suffix::OMP;
   respa_enable = 0;
+  fields->run_threads = [this](const std::function<void(int)> &body) {
+    const int n = fields->nthreads;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(n)
+    body(omp_get_thread_num());
+#else
+    (void) n;
+    body(0);
+#endif
+  };
 }
 
 void PairSaltdemViscousOMP::compute(int eflag, int vflag)
 {
   recheck_timestep();
   ev_init(eflag, vflag);
+  fields->nthreads = comm->nthreads;
   pre_loop();
   const int nall = atom->nlocal + atom->nghost;
   const int nthreads = comm->nthreads;

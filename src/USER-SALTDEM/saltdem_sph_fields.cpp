@@ -51,7 +51,24 @@ double SphFields::memory_usage() const
   return (double) (vol.capacity() + fill.capacity() + mdens.capacity() + pmat.capacity() +
                    moment.capacity() + slip.capacity() + vgrad.capacity()) *
       sizeof(double) +
-      (double) pairs.capacity() * sizeof(SubPair);
+      (double) (moment_thr.capacity() + vgrad_thr.capacity()) * sizeof(double) + [this] {
+        double n = 0.0;
+        for (const auto &p : pairs) n += (double) p.capacity() * sizeof(SubPair);
+        return n;
+      }();
+}
+
+void SphFields::add_slices(const double *part, int nt, std::size_t n, double *out) const
+{
+  for_threads([&](int tid) {
+    int from, to;
+    slice((int) n, tid, threads(), from, to);
+    for (int k = from; k < to; k++) {
+      double sum = 0.0;
+      for (int t = 0; t < nt; t++) sum += part[(std::size_t) t * n + k];
+      out[k] = sum;
+    }
+  });
 }
 
 /* the material density m / r^dim of the owned and ghost atoms, which weighs a partner as
@@ -255,6 +272,37 @@ template <int DIM, bool PLASTIC>
 void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &reverse_comm)
 {
   using L = SphLayout<DIM>;
+  const std::size_t nrow = in.newton ? in.nall : in.nlocal;
+  const int nt = threads();
+  pairs.resize(nt);
+  if (nt == 1) {
+    kernel_moments_range<DIM, PLASTIC>(in, 0, in.inum, moment.data(),
+                                       PLASTIC ? vgrad.data() : nullptr, pairs[0]);
+  } else {
+    // each thread sums into a slice of its own, the slices are added after
+    const std::size_t nm = L::NMOM * nrow, ng = PLASTIC ? PLASTIC_NVG_MAX * nrow : 0;
+    if (moment_thr.size() < nt * nm) moment_thr.resize(nt * nm);
+    if (vgrad_thr.size() < nt * ng) vgrad_thr.resize(nt * ng);
+    for_threads([&](int tid) {
+      int ii0, ii1;
+      slice(in.inum, tid, nt, ii0, ii1);
+      kernel_moments_range<DIM, PLASTIC>(in, ii0, ii1, &moment_thr[tid * nm],
+                                         PLASTIC ? &vgrad_thr[tid * ng] : nullptr, pairs[tid]);
+    });
+    add_slices(moment_thr.data(), nt, nm, moment.data());
+    if (PLASTIC) add_slices(vgrad_thr.data(), nt, ng, vgrad.data());
+  }
+  if (in.newton) reverse_comm();
+}
+
+/* the sums of the atoms ilist[ii0..ii1) and their partners into moment and vg (zeroed here:
+   every owned atom, and the ghosts with newton on), the pairs within 2h into plist */
+
+template <int DIM, bool PLASTIC>
+void SphFields::kernel_moments_range(const SphInput &in, int ii0, int ii1, double *moment,
+                                     double *vg, std::vector<SubPair> &plist)
+{
+  using L = SphLayout<DIM>;
   constexpr int NS = L::NS;
   constexpr int NG = PlasticLayout<DIM>::NG;
   const auto x = in.x;
@@ -264,9 +312,7 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
   const int *type = in.type;
   const int nlocal = in.nlocal;
   const bool newton_pair = in.newton;
-  double *moment = this->moment.data();
   std::fill_n(moment, L::NMOM * (newton_pair ? in.nall : nlocal), 0.0);
-  double *vg = PLASTIC ? vgrad.data() : nullptr;
   if (PLASTIC) std::fill_n(vg, PLASTIC_NVG_MAX * (newton_pair ? in.nall : nlocal), 0.0);
   const bool sub = keep_pairs;
   const bool ext = noslip;
@@ -278,8 +324,8 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
       Mb[NS + k] += mw * v[f][k];
     }
   };
-  pairs.clear();
-  for (int ii = 0; ii < in.inum; ii++) {
+  plist.clear();
+  for (int ii = ii0; ii < ii1; ii++) {
     const int i = in.ilist[ii];
     const int itype = type[i];
     const bool fi = fluidself[itype];
@@ -300,7 +346,7 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
       if (rsq * p.ih2 * p.ih2 >= 1.0 || rsq == 0.0) continue;    // beyond 2h (the list has a skin)
       const double r = sqrt(rsq);
       const double s = 1.0 - r * p.ih2;
-      if (sub) pairs.push_back({i, j, p.kvisc * s * s * s});
+      if (sub) plist.push_back({i, j, p.kvisc * s * s * s});
       const double w = p.cw * s * s * s;
       const double W = wendland_c2_s(p.cW, s);
       // i's partner j goes into i's fluid or boundary sums, and i into j's
@@ -333,7 +379,6 @@ void SphFields::kernel_moments(const SphInput &in, const std::function<void()> &
     if (PLASTIC && fi)
       for (int k = 0; k < 2 * NG; k++) vg[PLASTIC_NVG_MAX * i + k] += Gi[k];
   }
-  if (newton_pair) reverse_comm();
 }
 
 /* noslip surface: the offset v_eff - v of each owned boundary particle from its fluid

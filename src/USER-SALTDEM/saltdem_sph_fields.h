@@ -132,7 +132,32 @@ namespace SaltDEM {
     AtomArray vol, fill, mdens, pmat, moment, slip;
     AtomArray vgrad;              // plastic: the velocity-gradient sums (PlasticLayout::NVG values)
     std::vector<double> irho0;    // 1 / reference density per type (0: none)
-    std::vector<SubPair> pairs;
+    // keep_pairs: the FLUID pairs within 2h, one list per thread of the pass that found them
+    // (in the order of the neighbour list, each grouped by i)
+    std::vector<std::vector<SubPair>> pairs;
+
+    // threads: run_threads(body) calls body(tid) on each of nthreads threads at once (set by
+    // the OpenMP variant of the pair style; unset, or nthreads 1: one call with tid 0).  The
+    // kernel sums then go into a slice per thread and are added after the pass
+    int nthreads = 1;
+    std::function<void(const std::function<void(int)> &)> run_threads;
+    int threads() const { return (nthreads > 1 && run_threads) ? nthreads : 1; }
+    void for_threads(const std::function<void(int)> &body) const
+    {
+      if (threads() > 1)
+        run_threads(body);
+      else
+        body(0);
+    }
+    // the slices [from, to) of n items of thread tid of nt
+    static void slice(int n, int tid, int nt, int &from, int &to)
+    {
+      from = (int) ((long long) n * tid / nt);
+      to = (int) ((long long) n * (tid + 1) / nt);
+    }
+    // out[k] = sum over the nt slices (each of n values, stride n) of part, split between the
+    // threads
+    void add_slices(const double *part, int nt, std::size_t n, double *out) const;
 
     // room for n atoms (slip only with noslip)
     void grow(int n);
@@ -200,6 +225,10 @@ namespace SaltDEM {
     void kernel_density(const SphInput &, const std::function<void()> &, double *, double *);
     template <int DIM, bool PLASTIC>
     void kernel_moments(const SphInput &, const std::function<void()> &);
+    template <int DIM, bool PLASTIC>
+    void kernel_moments_range(const SphInput &, int ii0, int ii1, double *moment, double *vg,
+                              std::vector<SubPair> &plist);
+    std::vector<double> moment_thr, vgrad_thr;    // threads > 1: the slices of the sums
     template <int DIM> void plastic_rates(const SphInput &, int i, const double *rho0);
     template <int DIM> void noslip_offsets(const SphInput &);
     template <int DIM>

@@ -15,12 +15,14 @@
    Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
    repository: discrete-element salt tectonics)
 
-   saltdem/timestep F [substeps N]: sets the time step to F times the smallest stable
+   saltdem/timestep F [substeps N] [implicit yes|no]: sets the time step to F times the
+   smallest stable
    limit of the SaltDEM pair styles (alone or in pair hybrid) for the
    present atoms, coefficients and integrators - the limit their run-time
    check enforces - so that a deck states its margin instead of a number
-   that is right for one resolution only.  substeps N first sets the viscous
-   sub-steps of pair saltdem/viscous (also of a style read from a restart file).
+   that is right for one resolution only.  substeps N and implicit yes|no first set the
+   viscous sub-steps or implicit viscosity of pair saltdem/viscous (also of a style read from
+   a restart file).
 ------------------------------------------------------------------------- */
 
 #include "saltdem_timestep.h"
@@ -40,8 +42,8 @@ using namespace LAMMPS_NS;
 
 void SaltdemTimestep::command(int narg, char **arg)
 {
-  const char *usage = "saltdem/timestep F [substeps N]";
-  if (narg != 1 && !(narg == 3 && strcmp(arg[1], "substeps") == 0))
+  const char *usage = "saltdem/timestep F [substeps N] [implicit yes|no]";
+  if (narg < 1 || narg % 2 == 0)
     error->all(FLERR, "Illegal saltdem/timestep command: usage: {}", usage);
   if (domain->box_exist == 0)
     error->all(FLERR, "saltdem/timestep command before simulation box is defined");
@@ -58,16 +60,35 @@ void SaltdemTimestep::command(int narg, char **arg)
                "saltdem/timestep needs a SaltDEM pair style (saltdem/cohesive, "
                "saltdem/viscous; alone or in pair_style hybrid) with its coefficients set");
   // substeps N: the viscous sub-steps of every style that has them (saltdem/viscous), which
-  // raise its viscous limit N-fold
-  if (narg == 3) {
-    const int n = utils::inumeric(FLERR, arg[2], false, lmp);
+  // raise its viscous limit N-fold; implicit yes: its implicit viscosity, which has no limit
+  // (implicit first: a style that turns it off may then take sub-steps)
+  int nsub = -1, implicit = -1;
+  for (int iarg = 1; iarg < narg; iarg += 2) {
+    if (strcmp(arg[iarg], "substeps") == 0)
+      nsub = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+    else if (strcmp(arg[iarg], "implicit") == 0) {
+      if (strcmp(arg[iarg + 1], "yes") != 0 && strcmp(arg[iarg + 1], "no") != 0)
+        error->all(FLERR, "saltdem/timestep: implicit '{}' must be yes or no", arg[iarg + 1]);
+      implicit = strcmp(arg[iarg + 1], "yes") == 0;
+    } else
+      error->all(FLERR, "saltdem/timestep: unknown keyword '{}'; usage: {}", arg[iarg], usage);
+  }
+  if (implicit >= 0) {
     bool any = false;
-    for (auto pair : styles) any = pair->set_substeps(n) || any;
+    for (auto pair : styles) any = pair->set_implicit(implicit == 1) || any;
+    if (!any)
+      error->all(FLERR,
+                 "saltdem/timestep: implicit given, but no pair style has an implicit viscosity "
+                 "(saltdem/viscous)");
+  }
+  if (nsub >= 0) {
+    bool any = false;
+    for (auto pair : styles) any = pair->set_substeps(nsub) || any;
     if (!any)
       error->all(FLERR,
                  "saltdem/timestep: substeps {} given, but no pair style has viscous sub-steps "
                  "(saltdem/viscous)",
-                 n);
+                 nsub);
   }
   // the coefficients of every type pair as the run's init_one() will make them (mixed,
   // derived): the limit is computed from those

@@ -80,7 +80,7 @@ void parse_plastic(LAMMPS *lmp, const char *style, int narg, char **arg, SaltDEM
 }    // namespace
 
 /* pair_style saltdem/viscous [correction C] [calibration C] [dtfactor C] [viscfactor C]
-   [fill F] [substeps N] [noslip centre|surface] */
+   [fill F] [substeps N] [noslip centre|surface] [implicit yes|no] [tolerance T] [maxiter N] */
 
 void SaltDEM::parse_viscous_settings(LAMMPS *lmp, const char *style, int narg, char **arg,
                                      ViscousSettings &s, double dtfactor_max, int max_substeps)
@@ -104,6 +104,24 @@ void SaltDEM::parse_viscous_settings(LAMMPS *lmp, const char *style, int narg, c
                         "Pair style {}: noslip '{}' is not a boundary (expected surface: the fluid "
                         "meets a boundary disc at its surface, or centre: at its centre)",
                         style, arg[iarg + 1]);
+      iarg += 2;
+      continue;
+    }
+    if (strcmp(arg[iarg], "implicit") == 0) {
+      if (strcmp(arg[iarg + 1], "yes") != 0 && strcmp(arg[iarg + 1], "no") != 0)
+        lmp->error->all(FLERR,
+                        "Pair style {}: implicit '{}' must be yes (the viscosity in an implicit "
+                        "step, no viscous step limit) or no",
+                        style, arg[iarg + 1]);
+      s.implicit = strcmp(arg[iarg + 1], "yes") == 0;
+      iarg += 2;
+      continue;
+    }
+    if (strcmp(arg[iarg], "maxiter") == 0) {
+      s.maxiter = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (s.maxiter < 1 || s.maxiter > 100000)
+        lmp->error->all(FLERR, "Pair style {}: maxiter {} must be in [1, 100000]", style,
+                        s.maxiter);
       iarg += 2;
       continue;
     }
@@ -131,10 +149,18 @@ void SaltDEM::parse_viscous_settings(LAMMPS *lmp, const char *style, int narg, c
                         "stands for, in its own volumes; 1: none)",
                         style, v);
       s.fill_max = v;
+    } else if (strcmp(arg[iarg], "tolerance") == 0) {
+      if (!(v > 0.0 && v < 1.0))
+        lmp->error->all(FLERR,
+                        "Pair style {}: tolerance {} must be in (0, 1) (the implicit step's "
+                        "residual over the net force at the start velocities)",
+                        style, v);
+      s.tolerance = v;
     } else
       lmp->error->all(FLERR,
                       "Pair style {}: unknown keyword '{}' (expected: correction, calibration, "
-                      "dtfactor, viscfactor, fill, substeps, noslip)",
+                      "dtfactor, viscfactor, fill, substeps, noslip, implicit, tolerance, "
+                      "maxiter)",
                       style, arg[iarg]);
     iarg += 2;
   }
@@ -209,7 +235,10 @@ std::vector<std::string> SaltDEM::viscous_setting_names(int layout)
   if (layout == 1) return {"calibration", "correction", "dtfactor", "viscfactor"};
   if (layout == 3)
     return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps"};
-  return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps", "noslip"};
+  if (layout == 4 || layout == 5)
+    return {"calibration", "correction", "dtfactor", "viscfactor", "fill", "substeps", "noslip"};
+  return {"calibration", "correction", "dtfactor", "viscfactor", "fill",
+          "substeps",    "noslip",     "implicit", "tolerance",  "maxiter"};
 }
 
 void SaltDEM::pack_viscous_settings(const ViscousSettings &s, double *v)
@@ -221,6 +250,9 @@ void SaltDEM::pack_viscous_settings(const ViscousSettings &s, double *v)
   v[4] = s.fill_max;
   v[5] = s.substeps;
   v[6] = s.noslip_surface ? 1.0 : 0.0;
+  v[7] = s.implicit ? 1.0 : 0.0;
+  v[8] = s.tolerance;
+  v[9] = s.maxiter;
 }
 
 void SaltDEM::unpack_viscous_settings(const double *v, int layout, double default_fill,
@@ -233,6 +265,12 @@ void SaltDEM::unpack_viscous_settings(const double *v, int layout, double defaul
   s.fill_max = (layout == 1) ? default_fill : v[4];
   s.substeps = (layout == 1) ? 1 : (int) v[5];
   s.noslip_surface = (layout >= 4) && v[6] != 0.0;
+  const bool has_implicit = layout == 0 || layout >= 6;
+  s.implicit = has_implicit && v[7] != 0.0;
+  if (has_implicit) {
+    s.tolerance = v[8];
+    s.maxiter = (int) v[9];
+  }
 }
 
 /* the law, the viscosity and the coefficients given (the dashpots cw, ih2, kfac, gn, gt are

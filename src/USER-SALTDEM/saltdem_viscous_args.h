@@ -35,6 +35,9 @@ namespace SaltDEM {
     double correction, calibration, dtfactor, viscfactor, fill_max;
     int substeps;
     bool noslip_surface;
+    bool implicit;       // the viscosity in an implicit (backward Euler) step
+    double tolerance;    // implicit: residual over the residual at the start velocities
+    int maxiter;         // implicit: the most iterations per step
   };
 
   // pair_style STYLE keywords onto s (what is not given keeps its value)
@@ -47,7 +50,7 @@ namespace SaltDEM {
                                     const char *usage, double &eta);
 
   // the restart record of the settings in layout `layout` (0: this version's; 1 had no fill
-  // and substeps, 3 no noslip)
+  // and substeps, 3 no noslip, 4 and 5 no implicit step)
   std::vector<std::string> viscous_setting_names(int layout);
   void pack_viscous_settings(const ViscousSettings &s, double *v);
   void unpack_viscous_settings(const double *v, int layout, double default_fill,

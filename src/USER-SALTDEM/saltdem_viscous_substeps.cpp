@@ -15,10 +15,11 @@
    Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
    repository: discrete-element salt tectonics)
 
-   The viscous sub-steps of pair saltdem/viscous (SaltdemViscousSubsteps, see the header).
+   The viscosity of pair saltdem/viscous outside its force pass (SaltdemViscousSplit, see the
+   header): what the sub-steps and the implicit step share, and the sub-steps.
 ------------------------------------------------------------------------- */
 
-#include "saltdem_viscous_substeps.h"
+#include "saltdem_viscous_split.h"
 
 #include "pair_saltdem_viscous.h"
 #include "saltdem_sph_fields.h"
@@ -31,44 +32,46 @@
 
 using namespace LAMMPS_NS;
 
-SaltdemViscousSubsteps::SaltdemViscousSubsteps(LAMMPS *lmp, PairSaltdemViscous *owner) :
+SaltdemViscousSplit::SaltdemViscousSplit(LAMMPS *lmp, PairSaltdemViscous *owner) :
     Pointers(lmp), pair(owner)
 {
 }
 
-void SaltdemViscousSubsteps::grow(int n)
+void SaltdemViscousSplit::grow(int n)
 {
   if ((int) ksub.size() >= n) return;
-  usub.resize(3 * (size_t) n);
-  fsub.resize(3 * (size_t) n);
+  for (auto *a : {&usub, &fsub, &fother, &res, &dir, &pres}) a->resize(3 * (size_t) n);
+  out_thr.clear();
   ksub.resize(n);
-  fother.resize(3 * (size_t) n);
+  diag.resize(n);
 }
 
-double SaltdemViscousSubsteps::memory_usage() const
+double SaltdemViscousSplit::memory_usage() const
 {
-  return (double) (usub.capacity() + fsub.capacity() + ksub.capacity() + fother.capacity()) *
-      sizeof(double);
+  double n = 0.0;
+  for (const auto *a : {&usub, &fsub, &ksub, &fother, &res, &dir, &pres, &diag, &out_thr})
+    n += (double) a->capacity();
+  return n * sizeof(double);
 }
 
-void SaltdemViscousSubsteps::apply(int n)
+void SaltdemViscousSplit::substeps(int n)
 {
   pair->comm_mode = PairSaltdemViscous::COMM_SUBSTEP;
   if (domain->dimension == 2)
-    run<2>(n);
+    run_substeps<2>(n);
   else
-    run<3>(n);
+    run_substeps<3>(n);
   pair->comm_mode = PairSaltdemViscous::COMM_PRESSURE;
 }
 
-/* the Morris viscosity of the stored pairs (SphFields::pairs) as n explicit steps of dt/n on
-   copies of the velocities (positions, volumes and coefficients as in the force pass, the
-   other forces of the step held constant), each pair's force -g_ij (u_i - u_j) at every
-   sub-step; the mean force over the sub-steps is added to f, so that the integrator's step
-   gives each particle the velocity change of the sub-steps.  Atoms that no fix integrates or
-   whose motion is prescribed (walls) keep their velocity. */
+/* what both methods start from: the velocities usub = v (owned and ghost), kdt over the
+   inertial mass of each atom (0 for atoms that no fix integrates or whose motion is
+   prescribed: they keep their velocity), the other forces of the step (owned), and the pair
+   weights g_ij = c V_i V_j (the volumes of the force pass, pair_weights).  noslip surface: the
+   boundary partners' offsets (of the step's start) add a force that is held constant, as the
+   other forces (its ghosts' parts go home once). */
 
-template <int DIM> void SaltdemViscousSubsteps::run(int n)
+template <int DIM> void SaltdemViscousSplit::prepare(double kdt)
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -78,36 +81,27 @@ template <int DIM> void SaltdemViscousSubsteps::run(int n)
   double **f = atom->f;
   const int *mask = atom->mask;
   const double *m = atom->rmass;
-  const double hdt = update->dt * force->ftm2v / n;
-  const double inv_n = 1.0 / n;
-  const bool evflag = pair->evflag;
-  SaltDEM::SphFields &fields = *pair->fields;
-  std::vector<SaltDEM::SubPair> &subpairs = fields.pairs;
-  double *usub = this->usub.data(), *fsub = this->fsub.data();
-  double *ksub = this->ksub.data(), *fother = this->fother.data();
-
-  for (int i = 0; i < nall; i++)
-    for (int k = 0; k < 3; k++) usub[3 * i + k] = v[i][k];
-  // the other forces of the step, held constant over the sub-steps, and dt/N over the
-  // inertial mass of the owned atoms (0 for walls)
-  for (int i = 0; i < nlocal; i++) {
-    for (int k = 0; k < 3; k++) fother[3 * i + k] = f[i][k];
-    const double scale = PairSaltdemViscous::inertia_scale(mask[i], pair->integrators);
-    ksub[i] = (scale > 0.0) ? hdt / (scale * m[i]) : 0.0;
-  }
-
-  // the pair weights g_ij = c V_i V_j (the volumes of the force pass, pair_weights), once
   const int *type = atom->type;
   const double *radius = atom->radius;
-  for (auto &sp : subpairs) {
-    const SaltDEM::Weights w = fields.pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
-    sp.c *= w.vi * w.vj;
+  SaltDEM::SphFields &fields = *pair->fields;
+
+  for (int i = 0; i < nall; i++) {
+    for (int k = 0; k < 3; k++) usub[3 * i + k] = v[i][k];
+    const double scale = PairSaltdemViscous::inertia_scale(mask[i], pair->integrators);
+    ksub[i] = (scale > 0.0) ? kdt / (scale * m[i]) : 0.0;
   }
-  // noslip surface: the boundary partners' offsets (of the step's start) add a force that
-  // the sub-steps hold constant, as the other forces (its ghosts' parts go home once)
-  if (fields.noslip) {
-    for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
-    for (const auto &sp : subpairs) {
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < 3; k++) fother[3 * i + k] = f[i][k];
+  for (auto &list : fields.pairs)
+    for (auto &sp : list) {
+      const SaltDEM::Weights w =
+          fields.pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
+      sp.c *= w.vi * w.vj;
+    }
+  if (!fields.noslip) return;
+  for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
+  for (const auto &list : fields.pairs)
+    for (const auto &sp : list) {
       // -c (v_i - v_j + o_i - o_j) less the plain -c (v_i - v_j)
       double ov[3] = {0.0, 0.0, 0.0}, fp[3] = {0.0, 0.0, 0.0};
       if (!fields.noslip_pair<DIM>(sp.i, sp.j, type[sp.i], type[sp.j], ov)) continue;
@@ -116,78 +110,131 @@ template <int DIM> void SaltdemViscousSubsteps::run(int n)
         fsub[3 * sp.i + k] += fp[k];
         if (newton_pair || sp.j < nlocal) fsub[3 * sp.j + k] -= fp[k];
       }
-      if (evflag)
+      if (pair->evflag)
         pair->ev_tally_xyz(sp.i, sp.j, nlocal, newton_pair, 0.0, 0.0, fp[0], fp[1], fp[2],
                            x[sp.i][0] - x[sp.j][0], x[sp.i][1] - x[sp.j][1],
                            (DIM == 3) ? x[sp.i][2] - x[sp.j][2] : 0.0);
     }
-    if (newton_pair) comm->reverse_comm(pair);
-    for (int i = 0; i < nlocal; i++)
-      for (int k = 0; k < DIM; k++) {
-        f[i][k] += fsub[3 * i + k];
-        fother[3 * i + k] += fsub[3 * i + k];
-      }
-  }
-  const SaltDEM::SubPair *begin = subpairs.data(), *end = begin + subpairs.size();
-  for (int step = 0; step < n; step++) {
-    for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
+  rev = fsub.data();
+  if (newton_pair) comm->reverse_comm(pair);
+  for (int i = 0; i < nlocal; i++)
+    for (int k = 0; k < DIM; k++) {
+      f[i][k] += fsub[3 * i + k];
+      fother[3 * i + k] += fsub[3 * i + k];
+    }
+}
+
+/* out = the viscous force -sum_j g_ij (u_i - u_j) of the stored pairs on each owned atom (u
+   of the ghosts current), its ghosts' parts sent home; tally: each pair's force times scale
+   into the virial (in one thread: the tallies are not thread safe).  With several pair lists
+   (one per thread of the moment pass) each thread sums its list into a slice of its own. */
+
+template <int DIM>
+void SaltdemViscousSplit::laplacian(const double *u, double *out, bool tally, double scale)
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  const int newton_pair = force->newton_pair;
+  const double *const *x = atom->x;
+  const SaltDEM::SphFields &fields = *pair->fields;
+  const std::size_t nrow = 3 * (std::size_t)(newton_pair ? nall : nlocal);
+  auto sum_list = [&](const std::vector<SaltDEM::SubPair> &list, double *acc, bool tl) {
     // the pairs come grouped by i (SphFields::kernel_moments): i's sum is kept in registers
+    const SaltDEM::SubPair *begin = list.data(), *end = begin + list.size();
     for (const SaltDEM::SubPair *sp = begin; sp < end;) {
       const int i = sp->i;
-      const double ui[3] = {usub[3 * i], usub[3 * i + 1], usub[3 * i + 2]};
+      const double ui[3] = {u[3 * i], u[3 * i + 1], u[3 * i + 2]};
       double fi[3] = {0.0, 0.0, 0.0};
       for (; sp < end && sp->i == i; ++sp) {
         const int j = sp->j;
         double fp[3] = {0.0, 0.0, 0.0};
         for (int k = 0; k < DIM; k++) {
-          fp[k] = -sp->c * (ui[k] - usub[3 * j + k]);
+          fp[k] = -sp->c * (ui[k] - u[3 * j + k]);
           fi[k] += fp[k];
         }
         if (newton_pair || j < nlocal)
-          for (int k = 0; k < DIM; k++) fsub[3 * j + k] -= fp[k];
-        if (evflag)
-          pair->ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fp[0] * inv_n, fp[1] * inv_n,
-                             fp[2] * inv_n, x[i][0] - x[j][0], x[i][1] - x[j][1],
+          for (int k = 0; k < DIM; k++) acc[3 * j + k] -= fp[k];
+        if (tl)
+          pair->ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fp[0] * scale, fp[1] * scale,
+                             fp[2] * scale, x[i][0] - x[j][0], x[i][1] - x[j][1],
                              (DIM == 3) ? x[i][2] - x[j][2] : 0.0);
       }
-      for (int k = 0; k < DIM; k++) fsub[3 * i + k] += fi[k];
+      for (int k = 0; k < DIM; k++) acc[3 * i + k] += fi[k];
     }
-    if (newton_pair) comm->reverse_comm(pair);
+  };
+  const int nt = (int) fields.pairs.size();
+  if (nt <= 1 || tally || fields.threads() != nt) {
+    for (std::size_t k = 0; k < nrow; k++) out[k] = 0.0;
+    for (const auto &list : fields.pairs) sum_list(list, out, tally);
+  } else {
+    if (out_thr.size() < nt * nrow) out_thr.resize(nt * nrow);
+    fields.for_threads([&](int tid) {
+      double *acc = &out_thr[tid * nrow];
+      for (std::size_t k = 0; k < nrow; k++) acc[k] = 0.0;
+      sum_list(fields.pairs[tid], acc, false);
+    });
+    fields.add_slices(out_thr.data(), nt, nrow, out);
+  }
+  rev = out;
+  if (newton_pair) comm->reverse_comm(pair);
+}
+
+/* n explicit steps of dt/n on the velocities, each pair's force -g_ij (u_i - u_j) at every
+   sub-step; the mean force over the sub-steps is added to f, so that the integrator's step
+   gives each particle the velocity change of the sub-steps */
+
+template <int DIM> void SaltdemViscousSplit::run_substeps(int n)
+{
+  const int nlocal = atom->nlocal;
+  double **f = atom->f;
+  const double inv_n = 1.0 / n;
+  prepare<DIM>(update->dt * force->ftm2v / n);
+  double *usub = this->usub.data(), *fsub = this->fsub.data();
+  const double *ksub = this->ksub.data(), *fother = this->fother.data();
+  for (int step = 0; step < n; step++) {
+    laplacian<DIM>(usub, fsub, pair->evflag, inv_n);
     for (int i = 0; i < nlocal; i++)
       for (int k = 0; k < DIM; k++) {
         f[i][k] += fsub[3 * i + k] * inv_n;
         usub[3 * i + k] += ksub[i] * (fsub[3 * i + k] + fother[3 * i + k]);
       }
+    fwd = usub;
     if (step + 1 < n) comm->forward_comm(pair);
   }
 }
 
-int SaltdemViscousSubsteps::pack_forward_comm(int n, const int *list, double *buf) const
+int SaltdemViscousSplit::pack_forward_comm(int n, const int *list, double *buf) const
 {
   int k = 0;
   for (int i = 0; i < n; i++)
-    for (int c = 0; c < 3; c++) buf[k++] = usub[3 * list[i] + c];
+    for (int c = 0; c < 3; c++) buf[k++] = fwd[3 * list[i] + c];
   return k;
 }
 
-void SaltdemViscousSubsteps::unpack_forward_comm(int n, int first, const double *buf)
+void SaltdemViscousSplit::unpack_forward_comm(int n, int first, const double *buf)
 {
   int k = 0;
   for (int i = first; i < first + n; i++)
-    for (int c = 0; c < 3; c++) usub[3 * i + c] = buf[k++];
+    for (int c = 0; c < 3; c++) fwd[3 * i + c] = buf[k++];
 }
 
-int SaltdemViscousSubsteps::pack_reverse_comm(int n, int first, double *buf) const
+int SaltdemViscousSplit::pack_reverse_comm(int n, int first, double *buf) const
 {
   int k = 0;
   for (int i = first; i < first + n; i++)
-    for (int c = 0; c < 3; c++) buf[k++] = fsub[3 * i + c];
+    for (int c = 0; c < 3; c++) buf[k++] = rev[3 * i + c];
   return k;
 }
 
-void SaltdemViscousSubsteps::unpack_reverse_comm(int n, const int *list, const double *buf)
+void SaltdemViscousSplit::unpack_reverse_comm(int n, const int *list, const double *buf)
 {
   int k = 0;
   for (int i = 0; i < n; i++)
-    for (int c = 0; c < 3; c++) fsub[3 * list[i] + c] += buf[k++];
+    for (int c = 0; c < 3; c++) rev[3 * list[i] + c] += buf[k++];
 }
+
+// the implicit step's instances (saltdem_viscous_implicit.cpp)
+template void SaltdemViscousSplit::prepare<2>(double);
+template void SaltdemViscousSplit::prepare<3>(double);
+template void SaltdemViscousSplit::laplacian<2>(const double *, double *, bool, double);
+template void SaltdemViscousSplit::laplacian<3>(const double *, double *, bool, double);

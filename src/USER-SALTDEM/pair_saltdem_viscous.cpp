@@ -496,8 +496,8 @@ void PairSaltdemViscous::derive(int i, int j)
   p.ih2 = (p.h > 0.0) ? 0.5 / p.h : 0.0;
   p.cW = SaltDEM::wendland_c2(domain->dimension, p.h > 0.0 ? p.h : 1.0, 0.0);
   p.kvisc = 2.0 * correction * e * p.cw;
-  // sub-stepped or implicit: not in the force pass
-  p.kfac = (substeps > 1 || implicit) ? 0.0 : p.kvisc;
+  // sub-stepped: not in the force pass (implicit: there, and corrected after)
+  p.kfac = (substeps > 1) ? 0.0 : p.kvisc;
   p.gn = calibration * e;
   p.gt = p.ratio * p.gn;
   if (!std::isfinite(p.cw) || !std::isfinite(p.kvisc) || !std::isfinite(p.gn) ||

@@ -15,15 +15,16 @@
    Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
    repository: discrete-element salt tectonics)
 
-   SaltdemViscousSplit: the Morris viscosity of pair saltdem/viscous applied outside its force
-   pass, once all other forces of the step are in.  The viscosity is a linear operator on the
-   velocities (a graph Laplacian weighted by g_ij = kvisc V_i V_j (1 - r/2h)^3 over the FLUID
-   pairs), applied at the step's frozen positions and coefficients with the other forces held
-   constant, and the resulting viscous force is added to each particle:
-   - sub-steps (substeps N > 1, saltdem_viscous_substeps.cpp): N explicit steps of dt/N, whose
-     mean force is added; the stable limit grows N-fold;
-   - implicit (saltdem_viscous_implicit.cpp): a backward-Euler step solved by preconditioned
-     conjugate gradients; no viscous limit, and a steady flow keeps its exact stress.
+   SaltdemViscousSplit: the Morris viscosity of pair saltdem/viscous beyond its explicit limit,
+   applied once all other forces of the step are in.  The viscosity is a linear operator on
+   the velocities (a graph Laplacian L weighted by g_ij = kvisc V_i V_j (1 - r/2h)^3 over the
+   FLUID pairs), taken at the step's frozen positions and coefficients:
+   - sub-steps (substeps N > 1, saltdem_viscous_substeps.cpp): the force pass leaves it out;
+     N explicit steps of dt/N with the other forces held constant, whose mean force is added;
+     the stable limit grows N-fold;
+   - implicit (saltdem_viscous_implicit.cpp): the force pass keeps it; a backward-Euler
+     correction, solved by preconditioned conjugate gradients, is added; no viscous limit, and
+     a steady flow keeps its exact stress.
    Owned by the pair style, which carries its communication.
 ------------------------------------------------------------------------- */
 

@@ -234,7 +234,5 @@ void SaltdemViscousSplit::unpack_reverse_comm(int n, const int *list, const doub
 }
 
 // the implicit step's instances (saltdem_viscous_implicit.cpp)
-template void SaltdemViscousSplit::prepare<2>(double);
-template void SaltdemViscousSplit::prepare<3>(double);
 template void SaltdemViscousSplit::laplacian<2>(const double *, double *, bool, double);
 template void SaltdemViscousSplit::laplacian<3>(const double *, double *, bool, double);

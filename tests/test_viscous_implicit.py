@@ -17,6 +17,7 @@ import pytest
 from lmprun import assert_error, check_ok, run_lmp
 from test_viscous import (CHANNEL, ETA, NSTEPS, PACK, PARAMS, Channel, max_diff, pack,  # noqa: F401
                           read_dump)
+from test_viscous_substeps import RESTART_A, RESTART_B    # the channel written and resumed
 
 VISC_LIMIT = 0.0092    # s: the explicit viscous limit of the paper's salt in the channel
 KNW = 8e8              # N/m: the salt-wall contact, its limit 0.096 s
@@ -113,24 +114,6 @@ def test_implicit_parallel(flows, mode):
     assert b.rate == pytest.approx(a.rate, rel=1e-6)
 
 
-RESTART_A = f"include {PARAMS}\n" + CHANNEL.replace(
-    "run             $(v_nsteps)\nrun             $(v_nsteps)\n",
-    "run 50\nwrite_restart r.restart\nrun 50\n"
-    "write_dump all custom final.dump id x y vx vy modify sort id format float %.17g\n")
-RESTART_B = """read_restart r.restart
-comm_modify vel yes
-neighbor 2.8 bin
-neigh_modify exclude type 3 3
-neigh_modify every 1 delay 0 check yes
-fix integ salt saltdem/nve inertia 20
-fix drive top move linear 1 0 0 units box
-fix 2d all enforce2d
-timestep DT
-run 50
-write_dump all custom final.dump id x y vx vy modify sort id format float %.17g
-"""
-
-
 def test_restart_keeps_the_implicit_step(pack, tmp_path):
     """A restart file holds implicit yes, the tolerance and maxiter: the resumed run (which
     does not give them again) continues as the uninterrupted one."""
@@ -138,12 +121,12 @@ def test_restart_keeps_the_implicit_step(pack, tmp_path):
     a = tmp_path / "a"
     a.mkdir()
     r = run_lmp(RESTART_A, a, pack=pack, V=1.0, dt=dt, knw=KNW,
-                popts="implicit yes tolerance 1e-6 maxiter 150", nsteps=50)
+                popts="implicit yes tolerance 1e-6 maxiter 150", nsteps=100)
     check_ok(r)
     b = tmp_path / "b"
     b.mkdir()
     (b / "r.restart").write_bytes((a / "r.restart").read_bytes())
-    r2 = run_lmp(RESTART_B.replace("DT", str(dt)), b)
+    r2 = run_lmp(RESTART_B.replace("read_restart r.restart\n", f"read_restart r.restart\ntimestep {dt}\n"), b)
     check_ok(r2)
     assert "implicit step (tolerance 1e-06, maxiter 150)" in r2.out
     da, db = read_dump(a / "final.dump"), read_dump(b / "final.dump")

@@ -31,7 +31,10 @@
 #include "force.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <vector>
 
 using namespace LAMMPS_NS;
 
@@ -81,40 +84,69 @@ template <int DIM> void SaltdemViscousSplit::run_implicit(double tol, int maxite
     k[i] = (scale > 0.0) ? kdt / (scale * m[i]) : 0.0;
   }
   // the pair weights g_ij = c V_i V_j (the force pass's) and the diagonal 1 / k_i + sum_j g_ij
-  // (its ghosts' parts home in the first slot of p)
-  for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) p[i] = 0.0;
-  for (auto &list : fields.pairs)
-    for (auto &sp : list) {
-      const SaltDEM::Weights w =
-          fields.pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
-      sp.c *= w.vi * w.vj;
-      p[3 * sp.i] += sp.c;
-      if (newton_pair || sp.j < nlocal) p[3 * sp.j] += sp.c;
-    }
+  // (its ghosts' parts home in the first slot of p); several threads: each its own list, the
+  // sums in slices
+  const int nt = (int) fields.pairs.size();
+  const bool threaded = nt > 1 && fields.threads() == nt;
+  const std::size_t nrow = newton_pair ? nall : nlocal;
+  if (threaded && out_thr.size() < nt * nrow) out_thr.resize(nt * nrow);
+  fields.for_threads([&](int tid) {
+    if (!threaded && tid > 0) return;
+    double *acc = threaded ? &out_thr[tid * nrow] : z;
+    for (std::size_t i = 0; i < nrow; i++) acc[i] = 0.0;
+    for (int t = threaded ? tid : 0; t < (threaded ? tid + 1 : nt); t++)
+      for (auto &sp : fields.pairs[t]) {
+        const SaltDEM::Weights w =
+            fields.pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
+        sp.c *= w.vi * w.vj;
+        acc[sp.i] += sp.c;
+        if (newton_pair || sp.j < nlocal) acc[sp.j] += sp.c;
+      }
+  });
+  if (threaded) fields.add_slices(out_thr.data(), nt, nrow, z);
+  for (std::size_t i = 0; i < nrow; i++) p[3 * i] = z[i];
   rev = p;
   if (newton_pair) comm->reverse_comm(pair);
-  for (int i = 0; i < nlocal; i++) d[i] = (k[i] > 0.0) ? 1.0 / k[i] + p[3 * i] : 0.0;
 
-  auto dots = [&](double *out) {
+  // the vector operations over the owned atoms, split between the threads: body(i0, i1, part)
+  // with part[0..1] the thread's share of two sums
+  std::vector<double> parts(2 * (std::size_t) std::max(nt, 1));
+  auto over_atoms = [&](const std::function<void(int, int, double *)> &body, double *sums) {
+    const int n = threaded ? nt : 1;
+    for (auto &x : parts) x = 0.0;
+    fields.for_threads([&](int tid) {
+      if (tid >= n) return;
+      int i0, i1;
+      SaltDEM::SphFields::slice(nlocal, tid, n, i0, i1);
+      body(i0, i1, &parts[2 * tid]);
+    });
+    if (!sums) return;
     double local[2] = {0.0, 0.0};
-    for (int i = 0; i < nlocal; i++)
-      for (int c3 = 0; c3 < DIM; c3++) {
-        local[0] += r[3 * i + c3] * r[3 * i + c3];
-        local[1] += r[3 * i + c3] * z[3 * i + c3];
-      }
-    MPI_Allreduce(local, out, 2, MPI_DOUBLE, MPI_SUM, world);
+    for (int t = 0; t < n; t++)
+      for (int c = 0; c < 2; c++) local[c] += parts[2 * t + c];
+    MPI_Allreduce(local, sums, 2, MPI_DOUBLE, MPI_SUM, world);
   };
-  for (int i = 0; i < 3 * nall; i++) p[i] = del[i] = 0.0;
-  for (int i = 0; i < 3 * nlocal; i++) corr[i] = 0.0;
-  for (int i = 0; i < nlocal; i++)
-    for (int c3 = 0; c3 < DIM; c3++) {
-      const bool free = k[i] > 0.0;
-      r[3 * i + c3] = free ? f[i][c3] : 0.0;
-      z[3 * i + c3] = free ? r[3 * i + c3] / d[i] : 0.0;
-      p[3 * i + c3] = z[3 * i + c3];
-    }
+
+  // start at d = 0: the residual is the net force of the integrated atoms
   double sums[2];
-  dots(sums);
+  over_atoms(
+      [&](int i0, int i1, double *part) {
+        for (int i = i0; i < i1; i++) {
+          const bool free = k[i] > 0.0;
+          d[i] = free ? 1.0 / k[i] + p[3 * i] : 0.0;
+          for (int c3 = 0; c3 < 3; c3++) {
+            const bool use = free && c3 < DIM;
+            r[3 * i + c3] = use ? f[i][c3] : 0.0;
+            z[3 * i + c3] = use ? r[3 * i + c3] / d[i] : 0.0;
+            p[3 * i + c3] = z[3 * i + c3];
+            del[3 * i + c3] = corr[3 * i + c3] = 0.0;
+            part[0] += r[3 * i + c3] * r[3 * i + c3];
+            part[1] += r[3 * i + c3] * z[3 * i + c3];
+          }
+        }
+      },
+      sums);
+  for (int i = 3 * nlocal; i < 3 * nall; i++) p[i] = del[i] = 0.0;
   const double ref = sqrt(sums[0]);
   if (!std::isfinite(ref))
     error->all(FLERR,
@@ -133,33 +165,46 @@ template <int DIM> void SaltdemViscousSplit::run_implicit(double tol, int maxite
     fwd = p;
     comm->forward_comm(pair);
     laplacian<DIM>(p, q, false, 1.0);    // q = -L p
-    double pq = 0.0, pqall = 0.0;
-    for (int i = 0; i < nlocal; i++)
-      if (k[i] > 0.0)
-        for (int c3 = 0; c3 < DIM; c3++)
-          pq += p[3 * i + c3] * (p[3 * i + c3] / k[i] - q[3 * i + c3]);
-    MPI_Allreduce(&pq, &pqall, 1, MPI_DOUBLE, MPI_SUM, world);
-    if (!(pqall > 0.0) || !std::isfinite(pqall))
+    double pq[2];
+    over_atoms(
+        [&](int i0, int i1, double *part) {
+          for (int i = i0; i < i1; i++)
+            if (k[i] > 0.0)
+              for (int c3 = 0; c3 < DIM; c3++)
+                part[0] += p[3 * i + c3] * (p[3 * i + c3] / k[i] - q[3 * i + c3]);
+        },
+        pq);
+    if (!(pq[0] > 0.0) || !std::isfinite(pq[0]))
       error->all(FLERR,
                  "Pair style {}: the implicit viscous step broke down at step {} (p.Ap = {:.3g}, "
                  "not positive): a non-finite velocity or force; shorten the time step",
-                 pair->name_of(), update->ntimestep, pqall);
-    const double alpha = rz / pqall;
-    for (int i = 0; i < nlocal; i++)
-      for (int c3 = 0; c3 < DIM; c3++) {
-        corr[3 * i + c3] += alpha * q[3 * i + c3];
-        if (k[i] > 0.0) {
-          del[3 * i + c3] += alpha * p[3 * i + c3];
-          r[3 * i + c3] -= alpha * (p[3 * i + c3] / k[i] - q[3 * i + c3]);
-          z[3 * i + c3] = r[3 * i + c3] / d[i];
-        }
-      }
-    dots(sums);
+                 pair->name_of(), update->ntimestep, pq[0]);
+    const double alpha = rz / pq[0];
+    over_atoms(
+        [&](int i0, int i1, double *part) {
+          for (int i = i0; i < i1; i++)
+            for (int c3 = 0; c3 < DIM; c3++) {
+              const int n = 3 * i + c3;
+              corr[n] += alpha * q[n];
+              if (k[i] > 0.0) {
+                del[n] += alpha * p[n];
+                r[n] -= alpha * (p[n] / k[i] - q[n]);
+                z[n] = r[n] / d[i];
+                part[0] += r[n] * r[n];
+                part[1] += r[n] * z[n];
+              }
+            }
+        },
+        sums);
     rnorm = sqrt(sums[0]);
     const double beta = sums[1] / rz;
     rz = sums[1];
-    for (int i = 0; i < nlocal; i++)
-      for (int c3 = 0; c3 < DIM; c3++) p[3 * i + c3] = z[3 * i + c3] + beta * p[3 * i + c3];
+    over_atoms(
+        [&](int i0, int i1, double *) {
+          for (int i = i0; i < i1; i++)
+            for (int c3 = 0; c3 < DIM; c3++) p[3 * i + c3] = z[3 * i + c3] + beta * p[3 * i + c3];
+        },
+        nullptr);
     iter++;
   }
   iter_last = iter;

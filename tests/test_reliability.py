@@ -1051,9 +1051,10 @@ def test_restart_names_its_fields_and_version(lmp, tmp_path, style):
     at = at[style]
     version = struct.unpack("i", raw[at + 8:at + 12])[0]
     # saltdem/viscous: 3 added the settings fill and substeps, 4 noslip, 5 the plastic strength
-    # coefficients (it still reads 1, 3 and 4; 2, fill alone, was never released)
+    # coefficients, 6 the implicit step's settings (it still reads 1, 3, 4 and 5; 2, fill
+    # alone, was never released)
     current, reads = {"saltdem/cohesive": (1, "reads layout 1"),
-                      "saltdem/viscous": (5, "reads layouts 1, 3, 4 and 5")}[style]
+                      "saltdem/viscous": (6, "reads layouts 1, 3, 4, 5 and 6")}[style]
     assert version == current
     for bad in (7, 2) if style == "saltdem/viscous" else (7,):
         (tmp_path / "r.restart").write_bytes(raw[:at + 8] + struct.pack("i", bad) + raw[at + 12:])

@@ -104,7 +104,10 @@ template <int DIM> void SaltdemViscousSplit::run_implicit(double tol, int maxite
       }
   });
   if (threaded) fields.add_slices(out_thr.data(), nt, nrow, z);
-  for (std::size_t i = 0; i < nrow; i++) p[3 * i] = z[i];
+  for (std::size_t i = 0; i < nrow; i++) {
+    p[3 * i] = z[i];
+    p[3 * i + 1] = p[3 * i + 2] = 0.0;
+  }
   rev = p;
   if (newton_pair) comm->reverse_comm(pair);
 

@@ -69,41 +69,15 @@ template <int DIM> void SaltdemViscousSplit::run_implicit(double tol, int maxite
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
   double **f = atom->f;
-  const int *mask = atom->mask;
-  const double *m = atom->rmass;
-  const int *type = atom->type;
-  const double *radius = atom->radius;
   SaltDEM::SphFields &fields = *pair->fields;
   double *del = usub.data(), *q = fsub.data(), *r = res.data(), *p = dir.data();
   double *z = pres.data(), *d = diag.data(), *k = ksub.data(), *corr = fother.data();
 
-  // dt over the inertial mass (0: not integrated), owned and ghost
-  const double kdt = update->dt * force->ftm2v;
-  for (int i = 0; i < nall; i++) {
-    const double scale = PairSaltdemViscous::inertia_scale(mask[i], pair->integrators);
-    k[i] = (scale > 0.0) ? kdt / (scale * m[i]) : 0.0;
-  }
-  // the pair weights g_ij = c V_i V_j (the force pass's) and the diagonal 1 / k_i + sum_j g_ij
-  // (its ghosts' parts home in the first slot of p); several threads: each its own list, the
-  // sums in slices
-  const int nt = (int) fields.pairs.size();
-  const bool threaded = nt > 1 && fields.threads() == nt;
+  step_over_mass(update->dt * force->ftm2v);
+  // the pair weights and the diagonal 1 / k_i + sum_j g_ij (the sums' ghost parts home in the
+  // first slot of p)
+  weigh_pairs<DIM>(z);
   const std::size_t nrow = newton_pair ? nall : nlocal;
-  if (threaded && out_thr.size() < nt * nrow) out_thr.resize(nt * nrow);
-  fields.for_threads([&](int tid) {
-    if (!threaded && tid > 0) return;
-    double *acc = threaded ? &out_thr[tid * nrow] : z;
-    for (std::size_t i = 0; i < nrow; i++) acc[i] = 0.0;
-    for (int t = threaded ? tid : 0; t < (threaded ? tid + 1 : nt); t++)
-      for (auto &sp : fields.pairs[t]) {
-        const SaltDEM::Weights w =
-            fields.pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
-        sp.c *= w.vi * w.vj;
-        acc[sp.i] += sp.c;
-        if (newton_pair || sp.j < nlocal) acc[sp.j] += sp.c;
-      }
-  });
-  if (threaded) fields.add_slices(out_thr.data(), nt, nrow, z);
   for (std::size_t i = 0; i < nrow; i++) {
     p[3 * i] = z[i];
     p[3 * i + 1] = p[3 * i + 2] = 0.0;
@@ -113,12 +87,11 @@ template <int DIM> void SaltdemViscousSplit::run_implicit(double tol, int maxite
 
   // the vector operations over the owned atoms, split between the threads: body(i0, i1, part)
   // with part[0..1] the thread's share of two sums
-  std::vector<double> parts(2 * (std::size_t) std::max(nt, 1));
+  const int n = fields.threads();
+  std::vector<double> parts(2 * (std::size_t) n);
   auto over_atoms = [&](const std::function<void(int, int, double *)> &body, double *sums) {
-    const int n = threaded ? nt : 1;
     for (auto &x : parts) x = 0.0;
     fields.for_threads([&](int tid) {
-      if (tid >= n) return;
       int i0, i1;
       SaltDEM::SphFields::slice(nlocal, tid, n, i0, i1);
       body(i0, i1, &parts[2 * tid]);

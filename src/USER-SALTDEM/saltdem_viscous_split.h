@@ -67,6 +67,8 @@ class SaltdemViscousSplit : protected Pointers {
   double *fwd = nullptr;          // what forward communication sends (3 per atom)
   double *rev = nullptr;          // what reverse communication adds to (3 per atom)
 
+  void step_over_mass(double kdt);                      // ksub of the owned and ghost atoms
+  template <int DIM> void weigh_pairs(double *sums);    // the stored pairs' g_ij, per-atom sums
   template <int DIM> void prepare(double kdt);
   template <int DIM> void laplacian(const double *u, double *out, bool tally, double scale);
   template <int DIM> void run_substeps(int n);

@@ -30,6 +30,8 @@
 #include "force.h"
 #include "update.h"
 
+#include <algorithm>
+
 using namespace LAMMPS_NS;
 
 SaltdemViscousSplit::SaltdemViscousSplit(LAMMPS *lmp, PairSaltdemViscous *owner) :
@@ -64,12 +66,73 @@ void SaltdemViscousSplit::substeps(int n)
   pair->comm_mode = PairSaltdemViscous::COMM_PRESSURE;
 }
 
-/* what both methods start from: the velocities usub = v (owned and ghost), kdt over the
-   inertial mass of each atom (0 for atoms that no fix integrates or whose motion is
-   prescribed: they keep their velocity), the other forces of the step (owned), and the pair
-   weights g_ij = c V_i V_j (the volumes of the force pass, pair_weights).  noslip surface: the
-   boundary partners' offsets (of the step's start) add a force that is held constant, as the
-   other forces (its ghosts' parts go home once). */
+namespace {
+/* body(list, acc) for each pair list of the moment pass (SphFields::pairs), summing n values
+   into acc, which starts at 0: out gets the sums.  Several threads (one list each): each sums
+   into a slice of its own and the slices are added into out after; serial (e.g. for the
+   virial tallies, which are not thread safe): every list into out. */
+template <class Body>
+void sum_over_pairs(SaltDEM::SphFields &fields, std::vector<double> &slices, std::size_t n,
+                    double *out, bool serial, Body body)
+{
+  const int nt = (int) fields.pairs.size();
+  if (nt <= 1 || serial || fields.threads() != nt) {
+    std::fill_n(out, n, 0.0);
+    for (auto &list : fields.pairs) body(list, out);
+    return;
+  }
+  if (slices.size() < nt * n) slices.resize(nt * n);
+  fields.for_threads([&](int tid) {
+    double *acc = &slices[tid * n];
+    std::fill_n(acc, n, 0.0);
+    body(fields.pairs[tid], acc);
+  });
+  fields.add_slices(slices.data(), nt, n, out);
+}
+}    // namespace
+
+/* dt (or dt/N) over the inertial mass of each atom, owned and ghost (0 for atoms that no fix
+   integrates or whose motion is prescribed: they keep their velocity) */
+
+void SaltdemViscousSplit::step_over_mass(double kdt)
+{
+  const int nall = atom->nlocal + atom->nghost;
+  const int *mask = atom->mask;
+  const double *m = atom->rmass;
+  for (int i = 0; i < nall; i++) {
+    const double scale = PairSaltdemViscous::inertia_scale(mask[i], pair->integrators);
+    ksub[i] = (scale > 0.0) ? kdt / (scale * m[i]) : 0.0;
+  }
+}
+
+/* the pair weights g_ij = c V_i V_j (the volumes of the force pass, pair_weights) of the stored
+   pairs, and each atom's sum of its pairs' weights into sums (owned atoms, and the ghosts with
+   newton on, whose parts the caller sends home) */
+
+template <int DIM> void SaltdemViscousSplit::weigh_pairs(double *sums)
+{
+  const int nlocal = atom->nlocal;
+  const int newton_pair = force->newton_pair;
+  const int *type = atom->type;
+  const double *radius = atom->radius;
+  SaltDEM::SphFields &fields = *pair->fields;
+  const std::size_t nrow = newton_pair ? nlocal + atom->nghost : nlocal;
+  sum_over_pairs(fields, out_thr, nrow, sums, false,
+                 [&](std::vector<SaltDEM::SubPair> &list, double *acc) {
+                   for (auto &sp : list) {
+                     const SaltDEM::Weights w =
+                         fields.pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
+                     sp.c *= w.vi * w.vj;
+                     acc[sp.i] += sp.c;
+                     if (newton_pair || sp.j < nlocal) acc[sp.j] += sp.c;
+                   }
+                 });
+}
+
+/* what the sub-steps start from: the velocities usub = v (owned and ghost), dt/N over the
+   inertial masses, the other forces of the step (owned) and the pair weights.  noslip surface:
+   the boundary partners' offsets (of the step's start) add a force that is held constant, as
+   the other forces (its ghosts' parts go home once). */
 
 template <int DIM> void SaltdemViscousSplit::prepare(double kdt)
 {
@@ -79,25 +142,15 @@ template <int DIM> void SaltdemViscousSplit::prepare(double kdt)
   const double *const *v = atom->v;
   const double *const *x = atom->x;
   double **f = atom->f;
-  const int *mask = atom->mask;
-  const double *m = atom->rmass;
   const int *type = atom->type;
-  const double *radius = atom->radius;
   SaltDEM::SphFields &fields = *pair->fields;
 
-  for (int i = 0; i < nall; i++) {
+  for (int i = 0; i < nall; i++)
     for (int k = 0; k < 3; k++) usub[3 * i + k] = v[i][k];
-    const double scale = PairSaltdemViscous::inertia_scale(mask[i], pair->integrators);
-    ksub[i] = (scale > 0.0) ? kdt / (scale * m[i]) : 0.0;
-  }
+  step_over_mass(kdt);
   for (int i = 0; i < nlocal; i++)
     for (int k = 0; k < 3; k++) fother[3 * i + k] = f[i][k];
-  for (auto &list : fields.pairs)
-    for (auto &sp : list) {
-      const SaltDEM::Weights w =
-          fields.pair_weights<DIM>(radius, sp.i, sp.j, type[sp.i], type[sp.j]);
-      sp.c *= w.vi * w.vj;
-    }
+  weigh_pairs<DIM>(fsub.data());    // (the sums are not needed: fsub is free here)
   if (!fields.noslip) return;
   for (int i = 0; i < 3 * (newton_pair ? nall : nlocal); i++) fsub[i] = 0.0;
   for (const auto &list : fields.pairs)
@@ -126,8 +179,7 @@ template <int DIM> void SaltdemViscousSplit::prepare(double kdt)
 
 /* out = the viscous force -sum_j g_ij (u_i - u_j) of the stored pairs on each owned atom (u
    of the ghosts current), its ghosts' parts sent home; tally: each pair's force times scale
-   into the virial (in one thread: the tallies are not thread safe).  With several pair lists
-   (one per thread of the moment pass) each thread sums its list into a slice of its own. */
+   into the virial (in one thread: the tallies are not thread safe). */
 
 template <int DIM>
 void SaltdemViscousSplit::laplacian(const double *u, double *out, bool tally, double scale)
@@ -136,7 +188,7 @@ void SaltdemViscousSplit::laplacian(const double *u, double *out, bool tally, do
   const int nall = nlocal + atom->nghost;
   const int newton_pair = force->newton_pair;
   const double *const *x = atom->x;
-  const SaltDEM::SphFields &fields = *pair->fields;
+  SaltDEM::SphFields &fields = *pair->fields;
   const std::size_t nrow = 3 * (std::size_t)(newton_pair ? nall : nlocal);
   auto sum_list = [&](const std::vector<SaltDEM::SubPair> &list, double *acc, bool tl) {
     // the pairs come grouped by i (SphFields::kernel_moments): i's sum is kept in registers
@@ -162,19 +214,10 @@ void SaltdemViscousSplit::laplacian(const double *u, double *out, bool tally, do
       for (int k = 0; k < DIM; k++) acc[3 * i + k] += fi[k];
     }
   };
-  const int nt = (int) fields.pairs.size();
-  if (nt <= 1 || tally || fields.threads() != nt) {
-    for (std::size_t k = 0; k < nrow; k++) out[k] = 0.0;
-    for (const auto &list : fields.pairs) sum_list(list, out, tally);
-  } else {
-    if (out_thr.size() < nt * nrow) out_thr.resize(nt * nrow);
-    fields.for_threads([&](int tid) {
-      double *acc = &out_thr[tid * nrow];
-      for (std::size_t k = 0; k < nrow; k++) acc[k] = 0.0;
-      sum_list(fields.pairs[tid], acc, false);
-    });
-    fields.add_slices(out_thr.data(), nt, nrow, out);
-  }
+  sum_over_pairs(fields, out_thr, nrow, out, tally,
+                 [&](std::vector<SaltDEM::SubPair> &list, double *acc) {
+                   sum_list(list, acc, tally);
+                 });
   rev = out;
   if (newton_pair) comm->reverse_comm(pair);
 }
@@ -234,5 +277,7 @@ void SaltdemViscousSplit::unpack_reverse_comm(int n, const int *list, const doub
 }
 
 // the implicit step's instances (saltdem_viscous_implicit.cpp)
+template void SaltdemViscousSplit::weigh_pairs<2>(double *);
+template void SaltdemViscousSplit::weigh_pairs<3>(double *);
 template void SaltdemViscousSplit::laplacian<2>(const double *, double *, bool, double);
 template void SaltdemViscousSplit::laplacian<3>(const double *, double *, bool, double);

@@ -261,11 +261,21 @@ def test_resume_keeps_or_sets_implicit(tmp_path):
     for c in ("x", "y", "vx", "vy"):
         np.testing.assert_array_equal(last["auto"][c], last["yes"][c])
     assert np.abs(last["no"]["vx"] - last["yes"]["vx"]).max() > 0, "implicit no changed nothing"
+    # -var implicit_tol sets the solver's tolerance on the resumed style
+    wd = tmp_path / "tol"
+    wd.mkdir()
+    for p in first.glob("pack_*.data"):
+        (wd / p.name).write_bytes(p.read_bytes())
+    run_deck("expt1.in", wd, preset="tiny", implicit="yes", implicit_tol="0.01",
+             restart=str(restart), f=1.5)
+    assert "implicit step (tolerance 0.01," in (wd / "log.lammps").read_text()
+    assert np.abs(dumps(wd, "expt1")[-1]["vx"] - last["yes"]["vx"]).max() > 0
 
 
 @pytest.mark.parametrize("args,msg", [(("implicit", "maybe"), "implicit maybe must be yes, no or auto"),
                                       (("implicit", "yes", "saltlaw", "contact"),
-                                       "implicit yes is for the SPH salt")])
+                                       "implicit yes is for the SPH salt"),
+                                      (("implicit_tol", "1e-3"), "implicit_tol 1e-3 needs -var implicit yes")])
 def test_bad_implicit_stops(tmp_path, args, msg):
     extra = [a for k, v in zip(args[::2], args[1::2]) for a in ("-var", k, v)]
     r = run_cmd([lmp_path(), "-in", str(ROOT / "examples" / "expt1.in"), "-var", "root",

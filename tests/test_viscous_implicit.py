@@ -177,6 +177,26 @@ def test_timestep_command_sets_implicit(pack, tmp_path):
     assert float(lines[1][0]) > 5 * float(lines[0][0])
 
 
+def test_timestep_command_sets_the_tolerance(pack, tmp_path):
+    """saltdem/timestep F implicit yes tolerance T maxiter N sets the solver of a style made
+    (or read from a restart file) without them: the run reports them and stops at the new
+    maxiter; tolerance without implicit yes is refused."""
+    deck = f"include {PARAMS}\n" + CHANNEL.replace(
+        "timestep        ${dt}\n",
+        "timestep        ${dt}\nsaltdem/timestep 0.9 implicit yes tolerance 1e-12 maxiter 3\n")
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    r = run_channel(pack, tmp_path / "a", 10 * VISC_LIMIT, implicit=False, V=1.0, nsteps=200,
+                    deck=deck[deck.index("#"):])
+    assert "implicit step (tolerance 1e-12, maxiter 3)" in r.out
+    assert_error(r, "did not converge")
+    assert re.search(r"after maxiter 3", r.out)
+    bad = f"include {PARAMS}\n" + CHANNEL.replace(
+        "timestep        ${dt}\n", "timestep        ${dt}\nsaltdem/timestep 0.9 tolerance 1e-3\n")
+    r = run_lmp(bad, tmp_path / "b", pack=pack, V=1.0, knw=KNW, nsteps=200)
+    assert_error(r, "tolerance and maxiter are options of implicit yes")
+
+
 def test_compute_pair_reports_iterations(pack, tmp_path):
     """compute pair saltdem/viscous gives the iterations of the last step, their mean and the
     last residual (below the tolerance)."""

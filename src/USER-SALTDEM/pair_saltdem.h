@@ -40,7 +40,7 @@ class PairSaltdem : public Pair {
   // substeps N); false: the style has none
   virtual bool set_substeps(int) { return false; }
   // its implicit viscosity on or off (saltdem/timestep ... implicit yes|no); false: it has none
-  virtual bool set_implicit(bool) { return false; }
+  virtual bool set_implicit(bool, double = -1.0, int = -1) { return false; }
   PairSaltdem(class LAMMPS *, const char *style_name, const char *history_id);
   ~PairSaltdem() override;
 

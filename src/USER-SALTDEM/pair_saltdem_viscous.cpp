@@ -214,12 +214,15 @@ bool PairSaltdemViscous::set_substeps(int n)
   return true;
 }
 
-/* saltdem/timestep F implicit yes|no: likewise (implicit yes clears the sub-steps) */
+/* saltdem/timestep F implicit yes|no [tolerance T] [maxiter N]: likewise (implicit yes clears
+   the sub-steps; a tolerance or maxiter below zero keeps the style's) */
 
-bool PairSaltdemViscous::set_implicit(bool on)
+bool PairSaltdemViscous::set_implicit(bool on, double tol, int niter)
 {
   implicit = on;
   if (on) substeps = 1;
+  if (tol > 0.0) tolerance = tol;
+  if (niter > 0) maxiter = niter;
   return true;
 }
 

@@ -51,7 +51,7 @@ class PairSaltdemViscous : public PairSaltdem {
   double init_one(int, int) override;
   void *extract(const char *, int &) override;
   bool set_substeps(int n) override;
-  bool set_implicit(bool on) override;
+  bool set_implicit(bool on, double tol = -1.0, int niter = -1) override;
   void pre_loop() override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;

@@ -15,14 +15,13 @@
    Contributing authors: the SaltDEM developers (USER-SALTDEM package, SaltDEM
    repository: discrete-element salt tectonics)
 
-   saltdem/timestep F [substeps N] [implicit yes|no]: sets the time step to F times the
-   smallest stable
-   limit of the SaltDEM pair styles (alone or in pair hybrid) for the
-   present atoms, coefficients and integrators - the limit their run-time
-   check enforces - so that a deck states its margin instead of a number
-   that is right for one resolution only.  substeps N and implicit yes|no first set the
-   viscous sub-steps or implicit viscosity of pair saltdem/viscous (also of a style read from
-   a restart file).
+   saltdem/timestep F [substeps N] [implicit yes|no [tolerance T] [maxiter N]]: sets the time
+   step to F times the smallest stable limit of the SaltDEM pair styles (alone or in pair
+   hybrid) for the present atoms, coefficients and integrators - the limit their run-time check
+   enforces - so that a deck states its margin instead of a number that is right for one
+   resolution only.  substeps N and implicit yes|no (with its solver's tolerance and maxiter)
+   first set the viscous sub-steps or implicit viscosity of pair saltdem/viscous (also of a
+   style read from a restart file).
 ------------------------------------------------------------------------- */
 
 #include "saltdem_timestep.h"
@@ -42,7 +41,7 @@ using namespace LAMMPS_NS;
 
 void SaltdemTimestep::command(int narg, char **arg)
 {
-  const char *usage = "saltdem/timestep F [substeps N] [implicit yes|no]";
+  const char *usage = "saltdem/timestep F [substeps N] [implicit yes|no [tolerance T] [maxiter N]]";
   if (narg < 1 || narg % 2 == 0)
     error->all(FLERR, "Illegal saltdem/timestep command: usage: {}", usage);
   if (domain->box_exist == 0)
@@ -62,20 +61,34 @@ void SaltdemTimestep::command(int narg, char **arg)
   // substeps N: the viscous sub-steps of every style that has them (saltdem/viscous), which
   // raise its viscous limit N-fold; implicit yes: its implicit viscosity, which has no limit
   // (implicit first: a style that turns it off may then take sub-steps)
-  int nsub = -1, implicit = -1;
+  int nsub = -1, implicit = -1, maxiter = -1;
+  double tol = -1.0;
   for (int iarg = 1; iarg < narg; iarg += 2) {
     if (strcmp(arg[iarg], "substeps") == 0)
       nsub = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-    else if (strcmp(arg[iarg], "implicit") == 0) {
+    else if (strcmp(arg[iarg], "tolerance") == 0) {
+      tol = SaltDEM::numeric(FLERR, arg[iarg + 1], "saltdem/timestep: tolerance", lmp);
+      if (!(tol > 0.0 && tol < 1.0))
+        error->all(FLERR, "saltdem/timestep: tolerance {} must be in (0, 1)", tol);
+    } else if (strcmp(arg[iarg], "maxiter") == 0) {
+      maxiter = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (maxiter < 1 || maxiter > 100000)
+        error->all(FLERR, "saltdem/timestep: maxiter {} must be in [1, 100000]", maxiter);
+    } else if (strcmp(arg[iarg], "implicit") == 0) {
       if (strcmp(arg[iarg + 1], "yes") != 0 && strcmp(arg[iarg + 1], "no") != 0)
         error->all(FLERR, "saltdem/timestep: implicit '{}' must be yes or no", arg[iarg + 1]);
       implicit = strcmp(arg[iarg + 1], "yes") == 0;
     } else
       error->all(FLERR, "saltdem/timestep: unknown keyword '{}'; usage: {}", arg[iarg], usage);
   }
+  if ((tol > 0.0 || maxiter > 0) && implicit != 1)
+    error->all(FLERR,
+               "saltdem/timestep: tolerance and maxiter are options of implicit yes; add it "
+               "(usage: {})",
+               usage);
   if (implicit >= 0) {
     bool any = false;
-    for (auto pair : styles) any = pair->set_implicit(implicit == 1) || any;
+    for (auto pair : styles) any = pair->set_implicit(implicit == 1, tol, maxiter) || any;
     if (!any)
       error->all(FLERR,
                  "saltdem/timestep: implicit given, but no pair style has an implicit viscosity "

@@ -17,7 +17,12 @@ with y from the top of the wall discs, rho the salt's mass per area in the inter
   slip   where that parabola reaches u = 0, below the wall discs' top (m; > 0: the salt slips)
 
   PYTHONPATH=python python3 bench/validation/salt_film.py [--lmp build/lmp] [--work out/salt_film] [--json FILE]
-        [--case NAME:H:key=value,...] [--seconds 60] [--W 400]
+        [--case NAME:H:key=value,...] [--seconds 60] [--W 400] [--dim 3 --D 100]
+
+  --dim 3: the film as a slab of spheres D deep along z (x and z periodic; a pack of
+  tools/pack.in -var dim 3, settled with the 2D stiffness times rmin + rmax), on a layer of wall
+  spheres; M / W is then M / (W D), the mass per area, and rho a mass per volume.  The salt-wall
+  core kn_wall defaults to 5e9 x (rmin + rmax), the 3D scenes' rule.
 
   (case keys: the deck's variables, and rmin, rmax, seed of the pack)
 """
@@ -77,7 +82,7 @@ def analyse(text, profile, h, rmax=15.625):
     full = n > 0
     gs = m["g"] * m["slope"]
     eta = m["eta"]
-    mw = m["M"] / m["W"]                       # mass per width
+    mw = m["M"] / (m["W"] * m.get("D", 1.0))   # mass per width (2D), per area (3D)
     ycm = np.sum(dens * y) / np.sum(dens)      # the salt's centre of mass above the base
     tau_b = gs * mw                            # the base's shear stress
     us_ana = tau_b * ycm / eta                 # = int_0^top tau(y) / eta dy
@@ -102,9 +107,13 @@ def run_case(lmp, work, name, pack, seconds, rmax=15.625, **var):
     h = var.get("h", 28)
     cmd = [lmp, "-in", str(ROOT / "bench" / "validation" / "salt_film.in"), "-log", "log.lammps", "-screen",
            "none", "-nocite", "-var", "pack", str(pack)]
-    # the step is set by saltdem/timestep; nsteps from an estimate of it
-    dt = var.pop("dt_est", 0.008)
-    var.setdefault("nsteps", int(round(seconds / dt)))
+    if str(var.get("dim", 2)) == "3":
+        # the deck turns seconds into steps of the step saltdem/timestep sets
+        var.setdefault("seconds", seconds)
+    else:
+        # the step is set by saltdem/timestep; nsteps from an estimate of it
+        dt = var.pop("dt_est", 0.008)
+        var.setdefault("nsteps", int(round(seconds / dt)))
     for k, v in var.items():
         cmd += ["-var", k, str(v)]
     subprocess.run(cmd, cwd=wdir, check=True, stdout=subprocess.DEVNULL)
@@ -118,6 +127,8 @@ def main():
     ap.add_argument("--work", default=str(ROOT / "out" / "salt_film"))
     ap.add_argument("--seconds", type=float, default=60.0)
     ap.add_argument("--W", type=float, default=400.0)
+    ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
+    ap.add_argument("--D", type=float, default=100.0, help="3D: the slab's depth along z (m)")
     ap.add_argument("--case", action="append", default=[],
                     help="NAME:H:key=value,... (e.g. f365:365:K=1e8,kn_wall=5e9)")
     ap.add_argument("--json")
@@ -132,9 +143,13 @@ def main():
         rmin = float(var.pop("rmin", 6.25))
         rmax = float(var.pop("rmax", 15.625))
         seed = int(var.pop("seed", 7))
-        pack = make_pack(lmp, work / "packs", args.W, float(H), rmin, rmax, seed=seed)
+        D = args.D if args.dim == 3 else None
+        pack = make_pack(lmp, work / "packs", args.W, float(H), rmin, rmax, seed=seed, D=D)
         if "h" in var:
             var["h"] = float(var["h"])
+        if args.dim == 3:
+            var["dim"] = 3
+            var.setdefault("kn_wall", 5e9 * (rmin + rmax))
         r = run_case(lmp, work, name, pack, args.seconds, rmax, **var)
         results[name] = r
         print(f"{name}: y_cm {r['ycm']:.1f} m, H {r['H']:.1f} m: u_s/ana {r['ratio']:.4f}, slip "

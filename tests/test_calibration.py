@@ -14,6 +14,9 @@ potentials/*.params; docs/validation.md).
                confinements) lands within the band documented in
                docs/validation.md of the full calibration recorded in
                cover_paper.params
+  repose 3D    a tiny slab of spheres (repose.in -var dim 3) comes to rest
+               at an angle of 15-60 deg; the deck refuses dim 4 and a depth
+               below 4 rmax
   long         (pytest -m long) the full calibration: phi = 38 +- 1 deg and
                C = 2.5 +- 0.3 MPa; eta_eff of the paper salt within 5 % over
                two decades of shear rate
@@ -297,6 +300,48 @@ def test_reduced_biaxial_within_band(tmp_path):
     for png in ("biaxial_ci_curves.png", "biaxial_ci_mohr.png"):
         assert (out / png).stat().st_size > 10000
     assert "Mohr-Coulomb fit of the peaks" in (out / "report.md").read_text()
+
+
+# ---------------------------------------------------------------------------
+# the angle of repose in 3D
+# ---------------------------------------------------------------------------
+
+def test_repose_3d_heap_and_refusals(tmp_path):
+    """saltdem-calibrate repose --dim 3 (repose.in -var dim 3): a tiny slab of
+    spheres (block 400 x 200 m, D 62.5 m = 4 rmax, radii 6.25-15.625 m
+    uniform, mu_cover 0.8, mur_cover 0.4, cohesionless) slumps, comes to rest
+    and stands at an angle between 15 and 60 deg (measured: 29.3 +- 1.7 deg,
+    487 spheres, heap 212 m, at rest after 44000 steps; about 16 s of CPU);
+    the dump keeps id x y radius first and adds z inside the period.  The
+    deck refuses dim 4 and a depth below 4 rmax with a 'repose: ...' line
+    and exit status 1, before it makes a pack."""
+    out = tmp_path / "cal"
+    p = run_tool(out, "repose", "--dim", "3", "--depth", "62.5", "--size", "400", "200", "--dist", "uniform",
+                 "--set", "mu_cover=0.8", "--set", "mur_cover=0.4", timeout=600)
+    assert "repose 3D (cohesion x 0," in p.stdout and "at rest" in p.stdout, p.stdout
+    r = results(out)["repose"]["c0_3d"]
+    assert r["dim"] == 3 and r["depth"] == 62.5 and not r["still_moving"]
+    assert r["spheres"] > 300
+    assert 15.0 < r["angle"] < 60.0, r["angle"]
+    assert r["angle_err"] < 5.0 and r["n_points"] >= 5
+    with open(out / r["dir"] / "repose_t.dump") as fh:
+        head = [next(fh) for _ in range(9)]
+    assert head[8].split()[2:] == ["id", "x", "y", "radius", "z"]
+    a = np.loadtxt(out / r["dir"] / "repose_t.dump", skiprows=9)
+    assert a.shape == (r["spheres"], 5)
+    assert (a[:, 4] >= 0).all() and (a[:, 4] < 62.5).all()
+    # the refusals
+    deck = ROOT / "examples" / "calibration" / "repose.in"
+    for extra, words in ((["-var", "dim", "4"], "repose: dim = 4 must be 2 or 3"),
+                         (["-var", "dim", "3", "-var", "D", "60"],
+                          "repose: a 3D heap needs a depth D (m) of at least 4 rmax = 62.5 m")):
+        d = tmp_path / f"refuse_{'_'.join(extra)}"
+        d.mkdir()
+        q = run_cmd([lmp_path(), "-in", str(deck), "-echo", "none", "-log", "none", "-var", "root", str(ROOT),
+                     *extra], cwd=d, capture_output=True, text=True, timeout=60)
+        assert q.returncode == 1, q.stdout + q.stderr
+        assert words in q.stdout and "ERROR" not in q.stdout + q.stderr, q.stdout + q.stderr
+        assert not list(d.iterdir()), "a refused run must not make a pack"
 
 
 # ---------------------------------------------------------------------------

@@ -8,7 +8,8 @@ directory (``-o``, default ``out/calibration``):
 * ``biaxial``  biaxial tests of the cover at several confinements (and packs):
   peak deviatoric stress, Mohr-Coulomb fit -> bulk friction angle and
   cohesion with their standard errors;
-* ``repose``   angle of repose of the cohesionless cover (dam-break heap);
+* ``repose``   angle of repose of the cohesionless cover (dam-break heap;
+  ``--dim 3 --depth D``: a slab of spheres D deep, periodic along z);
 * ``couette``  plane Couette flow of the salt: eta_eff against shear rate and
   against the input viscosity;
 * ``search``   a grid of cover micro-parameters, each point a biaxial set; a
@@ -38,8 +39,8 @@ from typing import Dict, List, Optional, Sequence
 from ..checkout import is_checkout, lmp_path, repo
 from ..output import ensure_dir
 from .experiments import (BIAXIAL_ERATE, BIAXIAL_STRAIN, COHESION_KNOB, COUETTE_ETA, COUETTE_V, COUETTE_VREF,
-                          COVER_NAMES, MPA, PRESETS, apply_knob, biaxial_set, couette_runs, cover_material,
-                          potentials, repose_run, salt_material, sample_spec, solve_plane)
+                          COVER_NAMES, MPA, PAPER_RADII, PRESETS, apply_knob, biaxial_set, couette_runs,
+                          cover_material, potentials, repose_run, salt_material, sample_spec, solve_plane)
 from .runner import CalibrationError, Context, say
 from .writers import load_results, params_text_cover, params_text_salt, save_results, write_params
 
@@ -98,10 +99,15 @@ def cmd_biaxial(ctx: Context, args) -> dict:
 
 
 def cmd_repose(ctx: Context, args) -> dict:
-    mat = cover_material(ctx, args.params, parse_sets(args.set), 1.0)
-    r = repose_run(ctx, mat, args.cohscale, tuple(args.size), dist=args.dist)
+    if args.depth is not None and args.dim != 3:
+        raise ValueError("repose: --depth is the depth of a 3D slab: give it with --dim 3")
+    radii = tuple(args.radii)
+    # the size rule (cohesion, tensile strength and range x rmin / 6.25 m), as biaxial --radii does
+    mat = cover_material(ctx, args.params, parse_sets(args.set), radii[0] / PAPER_RADII[0])
+    r = repose_run(ctx, mat, args.cohscale, tuple(args.size), radii=radii, dist=args.dist, dim=args.dim,
+                   depth=args.depth)
     res = load_results(ctx)
-    res.setdefault("repose", {})[f"c{args.cohscale:g}"] = r
+    res.setdefault("repose", {})[f"c{args.cohscale:g}" + ("_3d" if args.dim == 3 else "")] = r
     save_results(ctx, res)
     return r
 
@@ -272,6 +278,13 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--cohscale", type=float, default=0.0, help="x contact cohesion and tensile (default 0)")
     s.add_argument("--size", type=float, nargs=2, default=(800.0, 400.0), metavar=("L0", "H0"))
     s.add_argument("--dist", choices=("paper", "uniform"), default="paper", help="radius distribution")
+    s.add_argument("--radii", type=float, nargs=2, default=PAPER_RADII, metavar=("RMIN", "RMAX"),
+                   help="disc radii in m (default %(default)s; the quick scenes': 25 62.5 with --dist uniform)")
+    s.add_argument("--dim", type=int, choices=(2, 3), default=2,
+                   help="2: a heap of discs (default); 3: a slab of spheres --depth deep, periodic in z "
+                        "(repose.in -var dim 3, contact laws x (rmin + rmax) as in the 3D scenes)")
+    s.add_argument("--depth", type=float, metavar="D",
+                   help="3D: depth of the slab along z in m (at least 4 rmax)")
 
     s = add("couette", [], "plane Couette flow of the salt: eta_eff vs shear rate and vs input eta")
     s.add_argument("--params", help="salt params file (default potentials/salt_paper.params)")

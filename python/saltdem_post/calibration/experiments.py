@@ -228,18 +228,43 @@ def biaxial_set(ctx: Context, material: Dict[str, float], sample: dict, label: s
 # -------------------------------------------------------------------- repose
 
 def repose_run(ctx: Context, material: Dict[str, float], cohscale: float = 0.0, size=(800.0, 400.0),
-               radii=PAPER_RADII, seed: int = 21, dist: str = "paper") -> dict:
-    label = f"c{cohscale:g}"
+               radii=PAPER_RADII, seed: int = 21, dist: str = "paper", dim: int = 2,
+               depth: Optional[float] = None) -> dict:
+    """The dam-break heap of repose.in and its angle.  dim 3: a slab of
+    spheres `depth` m deep along z, periodic in z (repose.in -var dim 3 -var D
+    depth, contact laws x (rmin + rmax)); the heap is uniform along z, so its
+    angle is fitted from the spheres' x, y as in 2D."""
+    three = dim == 3
+    if dim not in (2, 3):
+        raise ValueError(f"repose: dim = {dim} must be 2 or 3")
+    if three and (depth is None or depth < 4 * radii[1]):
+        raise ValueError(f"repose: a 3D heap needs a depth D (m) of at least 4 rmax = {4 * radii[1]:g} m: "
+                         "give --depth")
+    label = f"c{cohscale:g}" + ("_3d" if three else "")
+    shape = f"{size[0]:g}x{size[1]:g}" + (f"x{depth:g}" if three else "")
     v = dict(material)
     v.update(L0=size[0], H0=size[1], rmin=radii[0], rmax=radii[1], dist=dist, seed=seed, cohscale=cohscale, tag="t",
              pack=Path(ensure_dir(str(ctx.out / "packs"))) /
-             f"repose_{size[0]:g}x{size[1]:g}_r{radii[0]:g}-{radii[1]:g}{dist}_kn{material['kn_cover']:g}_s{seed}.data")
-    job = run_jobs(ctx, [Job(decks(ctx) / "repose.in", ctx.out / "repose" / label, v, f"repose cohscale {cohscale:g}")])[0]
+             f"repose{'3d' if three else ''}_{shape}_r{radii[0]:g}-{radii[1]:g}{dist}_kn{material['kn_cover']:g}"
+             f"_s{seed}.data")
+    if three:
+        v.update(dim=3, D=depth)
+    what = f"repose {'3D ' if three else ''}cohscale {cohscale:g}"
+    job = run_jobs(ctx, [Job(decks(ctx) / "repose.in", ctx.out / "repose" / label, v, what)])[0]
+    # columns id x y radius (3D: then z)
     a = np.loadtxt(job.workdir / "repose_t.dump", skiprows=9)
     rep = repose_angle(a[:, 1], a[:, 2], a[:, 3])
+    m = re.search(r"repose: released (\d+) (?:discs|spheres)", job.output)
     out = dict(cohscale=cohscale, size=list(size), radii=list(radii), dist=dist, material=material, dir=str(job.workdir.relative_to(ctx.out)),
                still_moving="still moving" in job.output, seconds=job.seconds, **rep.to_dict())
-    say(f"repose (cohesion x {cohscale:g}): angle {rep.angle:.1f} +- {rep.angle_err:.1f} deg, heap {rep.height:.0f} m")
+    if three:
+        out.update(dim=3, depth=depth, spheres=int(m.group(1)) if m else None)
+        say(f"repose 3D (cohesion x {cohscale:g}, {out['spheres']} spheres {radii[0]:g}-{radii[1]:g} m, block "
+            f"{size[0]:g} x {size[1]:g} x {depth:g} m): angle {rep.angle:.1f} +- {rep.angle_err:.1f} deg, "
+            f"heap {rep.height:.0f} m, {'STILL MOVING' if out['still_moving'] else 'at rest'}")
+    else:
+        say(f"repose (cohesion x {cohscale:g}): angle {rep.angle:.1f} +- {rep.angle_err:.1f} deg, "
+            f"heap {rep.height:.0f} m")
     return out
 
 

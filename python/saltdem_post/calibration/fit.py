@@ -225,7 +225,9 @@ def repose_angle(x, y, radius, bin_width: Optional[float] = None, floor: float =
     height, on the side of the heap that slopes down from its highest bin
     towards larger x (the deck's heap spreads to the right); the angle is
     atan(|slope|).  Bins of the flat top and of the toe are left out by the
-    height window."""
+    height window.  A 3D heap (repose.in -var dim 3, uniform along its
+    periodic z) gives the spheres' x, y: a bin's surface is then its highest
+    sphere top over the whole depth."""
     r = np.asarray(radius, float)
     bw = bin_width if bin_width else 2.0 * float(np.median(r))
     xc, top = surface_profile(x, y, r, bw, floor)

@@ -272,6 +272,26 @@ def test_resume_keeps_or_sets_implicit(tmp_path):
     assert np.abs(dumps(wd, "expt1")[-1]["vx"] - last["yes"]["vx"]).max() > 0
 
 
+@pytest.mark.parametrize("extra,says", [({}, None),
+                                        (dict(implicit_preset="yes", implicit_preset_tol="0.01"), "tolerance 0.01,"),
+                                        (dict(implicit_preset="yes", implicit_preset_tol="0.01", implicit_tol="0.001"),
+                                         "tolerance 0.001,"),
+                                        (dict(implicit_preset="yes", implicit_preset_tol="0.01", implicit="no"), None),
+                                        (dict(implicit_preset="yes", implicit_preset_tol="0.01", saltlaw="contact"),
+                                         None)])
+def test_implicit_auto_takes_the_presets_choice(tmp_path, extra, says):
+    """implicit auto (the default) on a new run takes the preset's choice (params.in: the full
+    preset sets implicit_preset yes at tolerance 0.01, the others no; here the tiny preset is
+    given the full preset's choice); -var implicit_tol and -var implicit no override it, and the
+    contact salt, which has no implicit step, keeps the explicit one."""
+    run_deck("expt1.in", tmp_path, preset="tiny", f=1, **extra)
+    log = (tmp_path / "log.lammps").read_text()
+    if says is None:
+        assert "the viscosity in an implicit step" not in log
+    else:
+        assert f"the viscosity in an implicit step ({says}" in log, log[-2000:]
+
+
 @pytest.mark.parametrize("args,msg", [(("implicit", "maybe"), "implicit maybe must be yes, no or auto"),
                                       (("implicit", "yes", "saltlaw", "contact"),
                                        "implicit yes is for the SPH salt"),

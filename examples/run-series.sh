@@ -153,7 +153,7 @@ for r in "${runs[@]}"; do
     esac
   fi
   [ -n "${ONLY:-}" ] && [[ " $ONLY " != *" $name "* ]] && continue
-  out="${OUT:-$root/out}/${series}_${preset}${msuffix}/$name"
+  out="$(realpath -m "${OUT:-$root/out}")/${series}_${preset}${msuffix}/$name"    # absolute: the run changes into it
   if [ -f "$out/done" ]; then echo "run-series: $name done already ($out)"; continue; fi
   mkdir -p "$out"
   resume=()

@@ -170,10 +170,11 @@ def test_series_runner_fig7(tmp_path):
 
 
 def test_series_runner_contact_only_list(tmp_path):
-    """examples/run-series.sh contact tiny with ONLY: just the named runs, with the contact salt."""
-    series = ROOT / "out" / "contact_tiny"
-    shutil.rmtree(series, ignore_errors=True)
-    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), ONLY="fig7_salt250_contact expt3_contact")
+    """examples/run-series.sh contact tiny with ONLY: just the named runs, with the contact salt,
+    under a relative OUT (taken from the directory the script is called in)."""
+    series = tmp_path / "runs" / "contact_tiny"
+    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), ONLY="fig7_salt250_contact expt3_contact",
+               OUT="runs")
     r = run_cmd(["bash", str(ROOT / "examples" / "run-series.sh"), "contact", "tiny"],
                        cwd=tmp_path, capture_output=True, text=True, timeout=600, env=env)
     assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]

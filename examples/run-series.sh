@@ -24,6 +24,10 @@
 #            salt pillow under a two-unit cover
 #   wedge    loading by a prograding wedge (examples/wedge.in): the front migrates 3 km at
 #            0.317 m/s (10 km/Myr natural), filling behind it to 400 m above the initial top
+#   3d       beyond the paper, in 3D (docs/3d.md): Expt 1 as a slab of spheres 250 m deep,
+#            periodic along strike (expt1_3d), and a basement fault whose throw dies out along
+#            strike: whole at z = 0, none from z = 1000 m on, between smooth end walls 1500 m
+#            apart (fault_tip_3d); sections, outcomes and the cover's map view by examples/post3d.sh
 #   gallery  everything docs/gallery.md shows: at quick expts, fig7, eta100, contact, seeds and fig6;
 #            at medium Expt 1, Expt 3 and fig7
 # PRESET: full (default: the paper's resolution), medium, quick, tiny.  Every run goes to the
@@ -80,6 +84,9 @@ fv=("expt1_fv expt1 0.05 $fvs" "expt2_fv expt2 0.05 $fvs" "expt3_fv expt3 0.05 $
     "fig7_salt250_fv expt1 0.05 -var dip 65 -var salt 250 $fvs")
 syntectonic=("expt1 expt1 0.05" "expt1_sedfill expt1 0.05 -var sediment fill")
 wedge=("wedge wedge 0.317")
+slab=250; [ "$preset" = tiny ] && slab=1000     # the tiny spheres need 1000 m (4 rmax)
+threed=("expt1_3d expt1 0.05 -var dim 3 -var depth $slab"
+        "fault_tip_3d expt1 0.05 -var dim 3 -var depth 1500 -var zends walls -var taper_from 0 -var taper_to 1000 -var restart_disp 20")
 # sections (examples/sections/NAME.toml, written into a deck by python/saltdem-section)
 sections=("domino section:domino 0.05" "pinchout section:pinchout 0.05" "pillow section:pillow 0.05")
 eta100=("expt1_eta100x expt1 0.05 -var eta 5e10 -var S 400" "expt3_eta100x expt3 0.05 -var eta 5e10 -var S 400"
@@ -100,10 +107,11 @@ case $series in
   syntectonic) runs=("${syntectonic[@]}") ;;
   wedge) runs=("${wedge[@]}") ;;
   sections) runs=("${sections[@]}") ;;
+  3d)    runs=("${threed[@]}") ;;
   gallery)
     if [ "$preset" = medium ]; then runs=("expt1 expt1 0.05" "expt3 expt3 0.05" "${fig7[@]}")
     else runs=("${expts[@]}" "${fig7[@]}" "${eta100[@]}" "${contact[@]}" "${seeds[@]}" "${fig6[@]}"); fi ;;
-  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, fv, eta100, syntectonic, wedge, sections or gallery" >&2; exit 2 ;;
+  *) echo "run-series: series '$series' must be expts, fig6, fig7, seeds, study, contact, fv, eta100, syntectonic, wedge, sections, 3d or gallery" >&2; exit 2 ;;
 esac
 msuffix=""
 case ${SALTMODEL:-} in
@@ -202,11 +210,24 @@ for r in "${runs[@]}"; do
   # the wedge: no basement fault (measured as a scene without one), its stages are the front's
   # migration, the incremental strain over 250 m of it
   [ "$deck" = wedge ] && { faults=(--increment 250 --at 500 1000 1500 2000 3000); scene=tilted; }
-  "$py" "$root/python/saltdem-post" figure "$out/dump.$deck.*.txt" -o "$out/figures" \
-      --name "$name.png" --title "$name ($preset, $rate m/s)" --rate "$rate" "${faults[@]}" -q
-  "$py" "$root/python/saltdem-post" outcomes "$out/dump.$deck.*.txt" -o "$out/outcomes" \
-      --rate "$rate" "${faults[@]}" --scene "$scene" -q
+  # 3D: sections at z = depth/2 and 0 of a periodic slab, or at five planes between end walls
+  args3d=" $vars $* "
+  if [[ $args3d == *" -var dim 3 "* ]]; then
+    depth=$(sed -n 's/.* -var depth \([0-9.e+]*\) .*/\1/p' <<< "$args3d")
+    if [[ $args3d == *" -var zends walls "* ]]; then
+      zs=$("$py" -c "print(' '.join(f'{$depth * (k + 0.5) / 5:g}' for k in range(5)))")
+    else
+      zs=$("$py" -c "print(f'{$depth / 2:g} 0')")
+    fi
+    RATE=$rate "$root/examples/post3d.sh" "$out" "$deck" "$zs" "${faults[@]}"
+  else
+    "$py" "$root/python/saltdem-post" figure "$out/dump.$deck.*.txt" -o "$out/figures" \
+        --name "$name.png" --title "$name ($preset, $rate m/s)" --rate "$rate" "${faults[@]}" -q
+    "$py" "$root/python/saltdem-post" outcomes "$out/dump.$deck.*.txt" -o "$out/outcomes" \
+        --rate "$rate" "${faults[@]}" --scene "$scene" -q
+  fi
   awk '{s += $1} END {print s}' "$out/wall_segments.txt" > "$out/wall.txt"
   touch "$out/done"
-  echo "run-series: $name: figure $out/figures/$name.png, outcomes $out/outcomes/outcomes.md"
+  if [[ $args3d == *" -var dim 3 "* ]]; then echo "run-series: $name: sections, outcomes and figures in $out/post3d"
+  else echo "run-series: $name: figure $out/figures/$name.png, outcomes $out/outcomes/outcomes.md"; fi
 done

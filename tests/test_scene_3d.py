@@ -3,6 +3,7 @@ into a slab of spheres, periodic in z (examples/expt1.in -var dim 3 -var depth D
 against the pack's geometry and the fault's closed-form motion, serial against two MPI ranks,
 a restart that continues exactly, and 2D-only input refused."""
 import os
+import sys
 
 import numpy as np
 import pytest
@@ -93,6 +94,28 @@ def test_sphere_pack_fills_the_slab(tmp_path):
                        - [500, 0, 125], axis=1)
     overlap = r[pairs[:, 0]] + r[pairs[:, 1]] - d
     assert overlap.max() < 0.02 * np.minimum(r[pairs[:, 0]], r[pairs[:, 1]]).min()
+
+
+def test_section_deck_tapers_as_the_example_deck(slab, tmp_path):
+    """A section description's deck (python/saltdem-section) takes zends walls and the taper as
+    examples/expt1.in does: the same frames, bit for bit."""
+    wd, _ = slab
+    deck = tmp_path / "expt1_section.in"
+    r = run_cmd([sys.executable, str(ROOT / "python" / "saltdem-section"),
+                 str(ROOT / "examples" / "sections" / "expt1.toml"), "-o", str(deck)],
+                capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    runs = {}
+    for name, d in (("deck", "expt1.in"), ("section", deck)):
+        (tmp_path / name).mkdir()
+        for p in wd.glob("pack_*.data"):
+            (tmp_path / name / p.name).write_bytes(p.read_bytes())
+        run_deck(d, tmp_path / name, dim=3, depth=DEPTH, preset="tiny", zends="walls",
+                 taper_from=0, taper_to=DEPTH)
+        runs[name] = {p.name: p.read_bytes() for p in (tmp_path / name).glob("dump.expt1.*.txt")}
+    assert len(runs["deck"]) >= 3 and runs["deck"].keys() == runs["section"].keys()
+    for k in runs["deck"]:
+        assert runs["deck"][k] == runs["section"][k], f"frame {k} differs"
 
 
 @pytest.mark.parametrize("var,words", [

@@ -1,4 +1,5 @@
 """The paper's scenes (examples/expt1-3.in) at the tiny preset, and the scene assembly."""
+import json
 import os
 import shutil
 
@@ -190,6 +191,25 @@ def test_series_runner_contact_only_list(tmp_path):
         for f in ("examples/scene/frames.in", "examples/expt3.in", "potentials/cover_paper.params",
                   "tools/pack.in"):
             assert (d / "scene-files" / f).read_text() == (ROOT / f).read_text()
+
+
+def test_series_runner_3d(tmp_path):
+    """examples/run-series.sh 3d tiny: the periodic slab and the fault dying out along strike,
+    each cut into sections (two planes of the slab, five between the end walls) with their
+    outcomes and figures, and the cover's map view."""
+    env = dict(os.environ, OMP_NUM_THREADS="1", LMP=lmp_path(), OUT="runs")
+    r = run_cmd(["bash", str(ROOT / "examples" / "run-series.sh"), "3d", "tiny"],
+                cwd=tmp_path, capture_output=True, text=True, timeout=900, env=env)
+    assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
+    for name, zs in (("expt1_3d", ("500", "0")), ("fault_tip_3d", ("150", "450", "750", "1050", "1350"))):
+        d = tmp_path / "runs" / "3d_tiny" / name / "post3d"
+        for z in zs:
+            o = json.loads((d / f"outcomes_z{z}" / "outcomes.json").read_text())
+            assert o, (name, z)
+            assert (d / "figures" / f"expt1_z{z}.png").stat().st_size > 10000
+        assert (d / "mapview.png").stat().st_size > 10000
+    cmd = (tmp_path / "runs" / "3d_tiny" / "fault_tip_3d" / "cmd.txt").read_text()
+    assert "-var zends walls -var taper_from 0 -var taper_to 1000" in cmd
 
 
 @pytest.mark.parametrize("name", ["expt1", "expt2"])

@@ -169,7 +169,10 @@ def deck(s: Section) -> str:
         L += ["# the cover's units, top first"] + uassign
     if s.wedge:
         L.append("variable        wtop equal ${H}+${load}+${salt}")
-    L += ["",
+    L += ["# 3D between end walls: the basement's wall spheres span the slab's depth",
+          'variable        wallz string ""',
+          'if "${zends} == walls" then "variable wallz string \'z $(v_rw) $(v_depth-v_rw)\'"',
+          "",
           "# ---- basement: wall discs (type 3), block by block ---------------------------------------------"]
     L += wall_lines(s)
     L += ["jump            SELF laws",
@@ -219,7 +222,9 @@ def deck(s: Section) -> str:
     else:
         grp = moving[0]
     args = block_args(s)
-    L.append(f"fix             blocks {grp} saltdem/blocks rate ${{rate}} target ${{target}} &")
+    L += ['variable        taperopt string ""',
+          'if "${taper_from} != ${taper_to}" then "variable taperopt string \'taper ${taper_from} ${taper_to}\'"']
+    L.append(f"fix             blocks {grp} saltdem/blocks rate ${{rate}} target ${{target}} ${{taperopt}} &")
     for k, a in enumerate(args):
         L.append(f"                {a}" + (" &" if k < len(args) - 1 else ""))
     if s.tilt:

@@ -94,16 +94,16 @@ def wall_lines(s: Section) -> list:
         else:
             x1 = f"$({fmt(fr.x)}-v_rw)"
         y = f"$({fmt(b.top)}-v_rw)"
-        lines.append(f"saltdem/wall    3 {x0} {y} {x1} {y} ${{rw}} group {g}")
+        lines.append(f"saltdem/wall    3 {x0} {y} {x1} {y} ${{rw}} group {g} ${{wallz}}")
         if k == 0:
             lw = g if s.left_wall == "block" else "wall_left"
-            lines.append(f"saltdem/wall    3 $(-v_rw) $({fmt(b.top)}+v_rw) $(-v_rw) {wtop} ${{rw}} group {lw}")
+            lines.append(f"saltdem/wall    3 $(-v_rw) $({fmt(b.top)}+v_rw) $(-v_rw) {wtop} ${{rw}} group {lw} ${{wallz}}")
         if k == n - 1 and s.right_wall == "block" and b.tilt:
             lines.append(f"saltdem/wall    3 $(v_width+v_rw) $({fmt(b.top)}+v_rw) $(v_width+v_rw) "
-                         f"{wtop} ${{rw}} group wall_right")
+                         f"{wtop} ${{rw}} group wall_right ${{wallz}}")
         elif k == n - 1 and s.right_wall == "block":
             lines.append(f"saltdem/wall    3 $(v_width+v_rw) $({fmt(b.top)}+v_rw) $(v_width+v_rw) "
-                         f"{wtop} ${{rw}} group {g}")
+                         f"{wtop} ${{rw}} group {g} ${{wallz}}")
         # the face it exposes: the footwall lines its fault face from its top down-dip
         for f, side in ((fl, "left"), (fr, "right")):
             if f is None:
@@ -122,9 +122,9 @@ def wall_lines(s: Section) -> list:
                 lface = _lining(s, b.top, "v_target", "v_dw")
             lines.append(f"saltdem/wall    3 $({fmt(f.x)}{back}v_rw*{sd}) $({top}-v_rw*{cd}) "
                          f"$({fmt(f.x)}{back}v_rw*{sd}{down}{lface}*{cd}) $({top}-v_rw*{cd}-{lface}*{sd}) "
-                         f"${{rw}} group {g}")
+                         f"${{rw}} group {g} ${{wallz}}")
     if s.right_wall in ("static", "move"):
-        lines.append("saltdem/wall    3 $(v_width+v_rw) $(v_rw) $(v_width+v_rw) $(v_H+v_salt) ${rw} group wall_right")
+        lines.append("saltdem/wall    3 $(v_width+v_rw) $(v_rw) $(v_width+v_rw) $(v_H+v_salt) ${rw} group wall_right ${wallz}")
     return lines
 
 

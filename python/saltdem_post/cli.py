@@ -249,7 +249,7 @@ def cmd_mapview(args) -> dict:
     view = map_view(ref, cur, args.cell, args.radius, MaterialMap.parse(args.types))
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
     map_view_figure(view, args.output)
-    keys = ("top", "top_ref", "uplift", "dilatation", "shear")
+    keys = ("top", "top_ref", "uplift", "dilatation", "shear", "salt_dz", "salt_thickness", "salt_dthick")
 
     def span(v):
         v = v[np.isfinite(v)]
@@ -264,7 +264,8 @@ def cmd_mapview(args) -> dict:
     _say(f"{args.output}: {len(view['x'])} x {len(view['z'])} cells (x, z) of {view['cell'][0]:.4g} x "
          f"{view['cell'][1]:.4g} m, steps {ref.timestep} -> {cur.timestep}; top change {text('uplift', '+.1f')} m, "
          f"dilatation {text('dilatation', '.3g')}, max shear {text('shear', '.3g')} "
-         f"({undefined} cell(s) without a strain)")
+         f"({undefined} cell(s) without a strain); salt along strike {text('salt_dz', '+.1f')} m, "
+         f"salt thickness change {text('salt_dthick', '+.1f')} m")
     return result
 
 
@@ -475,10 +476,12 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("-q", "--quiet", action="store_true", help="no progress display")
 
     s = sub.add_parser("mapview", help="3D slabs: map of the cover's top between two frames "
-                                       "(elevation change, horizontal dilatation and shear on x-z cells)",
+                                       "(elevation change, horizontal dilatation and shear on x-z cells) "
+                                       "and of the salt's flow along strike",
                        description="3D slabs: map view of the cover's top surface on x-z cells between REF "
                                    "and CUR: elevation change, and the horizontal dilatation and maximum "
-                                   "shear of its top layer")
+                                   "shear of its top layer; and of the salt below: its mean displacement "
+                                   "along strike and the change of its thickness")
     s.set_defaults(func=cmd_mapview)
     s.add_argument("ref", help="earlier 3D dump (its first frame)")
     s.add_argument("cur", help="later 3D dump (its last frame)")

@@ -98,6 +98,25 @@ class _Grid:
         top[np.isinf(top)] = np.nan
         return top
 
+    def thickness(self, salt: Frame) -> np.ndarray:
+        """Per cell, from the lowest y - r to the highest y + r of the salt spheres centred in
+        it (NaN: none)."""
+        k = self.index(salt.x, _z(salt))
+        top, base = np.full(self.nz * self.nx, -np.inf), np.full(self.nz * self.nx, np.inf)
+        np.maximum.at(top, k, salt.y + salt.radius)
+        np.minimum.at(base, k, salt.y - salt.radius)
+        t = top - base
+        t[~np.isfinite(t)] = np.nan
+        return t
+
+    def mean(self, x: np.ndarray, z: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """Mean of v over the points in each cell (NaN: none)."""
+        k = self.index(x, z)
+        n = np.bincount(k, minlength=self.nz * self.nx)
+        s = np.bincount(k, v, minlength=self.nz * self.nx)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(n > 0, s / np.maximum(n, 1), np.nan)
+
 
 def map_view(ref: Frame, cur: Frame, cell: Optional[float] = None, radius: Optional[float] = None,
              materials: Optional[MaterialMap] = None, min_neighbours: int = 3) -> dict:
@@ -117,7 +136,12 @@ def map_view(ref: Frame, cur: Frame, cell: Optional[float] = None, radius: Optio
       2 % uniaxial stretch, half the equivalent simple shear that strain.py's ``max_shear``
       reports; both are zero for any rigid motion.  NaN where fewer than ``min_neighbours``
       spheres, or collinear ones, are there;
-    * ``n_top``: top-layer spheres in each fit.
+    * ``n_top``: top-layer spheres in each fit;
+    * ``salt_dz``: the mean displacement along strike (+z) of the salt spheres, matched by id,
+      binned at their reference (x, z): how the salt flows along strike;
+    * ``salt_thickness``, ``salt_thickness_ref``, ``salt_dthick``: the salt's thickness in each
+      column (lowest sphere bottom to highest sphere top) and its change at the fixed cell.
+      All NaN where the column holds no salt (or, for ``salt_dz``, the frames none).
 
     ``cell`` defaults to :func:`default_cell`; along a periodic z it is adjusted so whole
     cells span the box.  z differences are wrapped by the box length when z is periodic.
@@ -173,25 +197,45 @@ def map_view(ref: Frame, cur: Frame, cell: Optional[float] = None, radius: Optio
 
     def grid_of(v):
         return np.asarray(v, float).reshape(grid.nz, grid.nx)
+
+    salt_ref = ref.subset(materials.mask(ref["type"], "salt"))
+    salt_cur = cur.subset(materials.mask(cur["type"], "salt"))
+    nan = np.full(grid.nz * grid.nx, np.nan)
+    th_ref = grid.thickness(salt_ref) if salt_ref.natoms else nan
+    th_cur = grid.thickness(salt_cur) if salt_cur.natoms else nan
+    sa, sb = match_ids(salt_ref.ids, salt_cur.ids) if salt_ref.natoms and salt_cur.natoms else ([], [])
+    if len(sa):
+        zs = _z(salt_ref)[sa]
+        dz = wrap_periodic(_z(salt_cur)[sb] - zs, P_cur)
+        salt_dz = grid.mean(salt_ref.x[sa], zs, dz)
+    else:
+        salt_dz = nan
     return {"x": grid.x, "z": grid.z, "cell": (grid.dx, grid.dz), "radius": radius,
             "ref_timestep": ref.timestep, "cur_timestep": cur.timestep,
             "top": grid_of(top_cur), "top_ref": grid_of(top_ref), "uplift": grid_of(top_cur - top_ref),
             "dilatation": grid_of(fit.dilatation), "shear": grid_of(0.5 * (s1 - s2)),
-            "n_top": grid_of(fit.n_neighbours).astype(np.int64)}
+            "n_top": grid_of(fit.n_neighbours).astype(np.int64),
+            "salt_dz": grid_of(salt_dz), "salt_thickness": grid_of(th_cur),
+            "salt_thickness_ref": grid_of(th_ref), "salt_dthick": grid_of(th_cur - th_ref)}
 
 
 def map_view_figure(view: dict, path: str, dpi: int = 150) -> str:
-    """Two stacked map panels, x along the section, z along strike, equal aspect: the change
-    of the top elevation and the horizontal dilatation, each on a scale centred on 0."""
+    """Stacked map panels, x along the section, z along strike, equal aspect, each on a scale
+    centred on 0: the change of the cover's top elevation, the horizontal dilatation of its
+    top layer, the salt's mean displacement along strike and the change of its thickness."""
     from .figures import km_axes, plt        # matplotlib (Agg) only when drawing
     x, z, (dx, dz) = view["x"], view["z"], view["cell"]
     xe = np.append(x - 0.5 * dx, x[-1] + 0.5 * dx)
     ze = np.append(z - 0.5 * dz, z[-1] + 0.5 * dz)
     aspect = (ze[-1] - ze[0]) / (xe[-1] - xe[0])
-    fig, axes = plt.subplots(2, 1, figsize=(8.0, 2 * max(1.6, 6.5 * aspect) + 1.4), constrained_layout=True)
     steps = f"steps {view['ref_timestep']} → {view['cur_timestep']}"
     panels = [("uplift", f"change of the cover's top elevation, {steps}", "Δ top (m)", "RdBu_r"),
-              ("dilatation", "horizontal dilatation of its top layer (extension > 0)", "dilatation (–)", "PuOr_r")]
+              ("dilatation", "horizontal dilatation of its top layer (extension > 0)", "dilatation (–)", "PuOr_r"),
+              ("salt_dz", "the salt's mean displacement along strike (+z)", "Δz (m)", "BrBG"),
+              ("salt_dthick", "change of the salt's thickness", "Δ thickness (m)", "RdBu_r")]
+    panels = [p for p in panels if p[0] in view]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(8.0, len(panels) * max(1.6, 6.5 * aspect) + 1.4),
+                             constrained_layout=True)
     for ax, (key, title, label, cmap) in zip(axes, panels):
         v = np.ma.masked_invalid(view[key])
         vmax = float(np.abs(v).max()) if v.count() else 1.0

@@ -10,7 +10,7 @@ from matplotlib.image import imread
 from saltdem_post.cli import main
 from saltdem_post.dump import Box, Frame, read_frame, write_dump
 from saltdem_post.slab import default_width, map_view, section_at
-from saltdem_post.synthetic import COVER, SceneSpec, reference_scene
+from saltdem_post.synthetic import COVER, SALT, SceneSpec, reference_scene
 
 SPEC = SceneSpec(width=1000.0, salt_thickness=120.0, cover_thickness=150.0)
 A = 2.0 * SPEC.r_max          # spacing of the planes along z
@@ -156,6 +156,28 @@ def test_map_view_graben_shows_in_the_top():
     np.testing.assert_allclose(finite(v["uplift"][:, outside]), 0.0, atol=1e-9)
     np.testing.assert_allclose(finite(v["dilatation"]), 0.0, atol=1e-9)   # no horizontal motion
     assert np.nanmax(v["top"] - v["top_ref"]) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_map_view_salt_flow_along_strike_and_thickness():
+    """The salt moves 20 m along +z and, in a strip, its upper half rises 30 m: the map shows
+    20 m along strike wherever there is salt and +30 m of thickness in the strip only; the
+    cover is untouched."""
+    f = slab(periodic=False)
+    salt = f["type"] == SALT
+    ymid = np.median(f.y[salt])
+    strip = salt & (f.x > 400.0) & (f.x < 600.0) & (f.y > ymid)
+    v = map_view(f, moved(f, z=f["z"] + 20.0 * salt, y=f.y + 30.0 * strip))
+    has = np.isfinite(v["salt_thickness_ref"])
+    assert has.sum() >= 0.8 * has.size
+    np.testing.assert_allclose(v["salt_dz"][has], 20.0, atol=1e-9)
+    half = 0.5 * v["cell"][0]
+    inside = (v["x"] - half > 400.0) & (v["x"] + half < 600.0)
+    outside = (v["x"] + half < 400.0) | (v["x"] - half > 600.0)
+    assert inside.sum() >= 1
+    np.testing.assert_allclose(finite(v["salt_dthick"][:, inside]), 30.0, atol=1e-9)
+    np.testing.assert_allclose(finite(v["salt_dthick"][:, outside]), 0.0, atol=1e-9)
+    np.testing.assert_allclose(finite(v["uplift"]), 0.0, atol=1e-9)
+    check_rigid(v)
 
 
 # ----------------------------------------------------------------------- CLI

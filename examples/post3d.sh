@@ -24,7 +24,8 @@ compgen -G "$run/dump.$name.*.txt" > /dev/null || {
 mkdir -p "$out"
 "$py" "$post" section3d "$run/dump.$name.*.txt" --z "${zs[@]}" -o "$out/sections" -q
 for z in "${zs[@]}"; do
-  z=$("$py" -c "print(f'{float(\"$z\"):g}')")     # section3d's file names write Z so
+  # Z as section3d writes it in its file names
+  z=$("$py" -c "import numpy; print(numpy.format_float_positional(float('$z'), trim='-'))")
   "$py" "$post" outcomes "$out/sections/dump.$name.*_z$z.txt" -o "$out/outcomes_z$z" \
       --rate "$rate" --title "$name, section z = $z m" -q "$@"
   "$py" "$post" figure "$out/sections/dump.$name.*_z$z.txt" -o "$out/figures" \

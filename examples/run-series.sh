@@ -212,7 +212,8 @@ for r in "${runs[@]}"; do
   [ "$deck" = wedge ] && { faults=(--increment 250 --at 500 1000 1500 2000 3000); scene=tilted; }
   # 3D: sections at z = depth/2 and 0 of a periodic slab, or at five planes between end walls
   args3d=" $vars $* "
-  if [[ $args3d == *" -var dim 3 "* ]]; then
+  is3d=0; [[ $args3d == *" -var dim 3 "* ]] && is3d=1
+  if [ "$is3d" = 1 ]; then
     depth=$(sed -n 's/.* -var depth \([0-9.e+]*\) .*/\1/p' <<< "$args3d")
     if [[ $args3d == *" -var zends walls "* ]]; then
       zs=$("$py" -c "print(' '.join(f'{$depth * (k + 0.5) / 5:g}' for k in range(5)))")
@@ -228,6 +229,6 @@ for r in "${runs[@]}"; do
   fi
   awk '{s += $1} END {print s}' "$out/wall_segments.txt" > "$out/wall.txt"
   touch "$out/done"
-  if [[ $args3d == *" -var dim 3 "* ]]; then echo "run-series: $name: sections, outcomes and figures in $out/post3d"
+  if [ "$is3d" = 1 ]; then echo "run-series: $name: sections, outcomes and figures in $out/post3d"
   else echo "run-series: $name: figure $out/figures/$name.png, outcomes $out/outcomes/outcomes.md"; fi
 done

@@ -114,8 +114,7 @@ class _Grid:
         k = self.index(x, z)
         n = np.bincount(k, minlength=self.nz * self.nx)
         s = np.bincount(k, v, minlength=self.nz * self.nx)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return np.where(n > 0, s / np.maximum(n, 1), np.nan)
+        return np.where(n > 0, s / np.maximum(n, 1), np.nan)
 
 
 def map_view(ref: Frame, cur: Frame, cell: Optional[float] = None, radius: Optional[float] = None,
@@ -233,7 +232,6 @@ def map_view_figure(view: dict, path: str, dpi: int = 150) -> str:
               ("dilatation", "horizontal dilatation of its top layer (extension > 0)", "dilatation (–)", "PuOr_r"),
               ("salt_dz", "the salt's mean displacement along strike (+z)", "Δz (m)", "BrBG"),
               ("salt_dthick", "change of the salt's thickness", "Δ thickness (m)", "RdBu_r")]
-    panels = [p for p in panels if p[0] in view]
     fig, axes = plt.subplots(len(panels), 1, figsize=(8.0, len(panels) * max(1.6, 6.5 * aspect) + 1.4),
                              constrained_layout=True)
     for ax, (key, title, label, cmap) in zip(axes, panels):

@@ -6,6 +6,7 @@ import re
 
 import pytest
 
+from lmprun import ROOT, lmp_path, run_cmd
 from test_scenes import run_deck
 
 # paper, standard rate (Table 1; brief): eta v / (rho g H_salt H_cover), Reynolds number per unit
@@ -62,6 +63,22 @@ def test_preset_runs_at_the_papers_physics(packs, preset, deck):
     # a few hundred faulting steps at most
     steps = re.search(r"(\d+) steps to 0.05 m", proc.stdout)
     assert steps and 20 < int(steps.group(1)) < 1000
+
+
+@pytest.mark.parametrize("dim,given,expect", [(2, None, 1.41e6), (3, None, 2.83e6), (3, 3.1e6, 3.1e6)])
+def test_quick_cover_cohesion_is_its_dimensions(tmp_path, dim, given, expect):
+    """The cover cohesion the groups print is the one measured for the preset's discs or spheres
+    (2D biaxial, 3D triaxial tests at the quick radii); -var C_cover still wins."""
+    deck = tmp_path / "c.in"
+    deck.write_text("include ${root}/examples/scene/params.in\nprint 'C_cover ${C_cover}'\n")
+    cmd = [lmp_path(), "-in", str(deck), "-log", "none", "-echo", "none", "-var", "root", str(ROOT),
+           "-var", "preset", "quick", "-var", "dim", str(dim), "-var", "depth", "250"]
+    if given:
+        cmd += ["-var", "C_cover", str(given)]
+    proc = run_cmd(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    m = re.search(r"^C_cover (\S+)$", proc.stdout, re.M)
+    assert proc.returncode == 0 and m, (proc.stdout + proc.stderr)[-2000:]
+    assert float(m.group(1)) == expect
 
 
 def test_low_rate_scales_the_viscous_group(tmp_path):

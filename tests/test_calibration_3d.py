@@ -117,6 +117,34 @@ def test_depth_is_ignored_in_2d(tmp_path):
     assert (tmp_path / "biaxial_t.txt").read_text().startswith("# biaxial test: sigma3_target 2e6 Pa")
 
 
+@pytest.mark.parametrize("cohesive", [True, False])
+def test_tension_mode_pulls_the_sample_apart(tmp_path, cohesive):
+    """mode tension: the glued platens move apart and sigma1 falls from sigma3 through zero;
+    the paper cover (contact cohesion and tensile strength) carries an axial tension, a
+    cohesionless sample (glue and contacts without cohesion) none: it fails in extension as soon
+    as sigma1 falls below sigma3 / N; the cohesive one's lateral walls keep confining it."""
+    var = dict(dim=2, W=200, H=400, rmin=6.25, rmax=15.625, dist="uniform", seed=11, sigma3="1e6",
+               erate=2e-3, strain_max=0.01, nout=200, tag="t", mode="tension")
+    if not cohesive:
+        var.update(coh_cover=0, ten_cover=0)
+    rc, out = run_deck(tmp_path, **var)
+    assert rc == 0, out[-2000:]
+    c = BiaxialCurve.read(tmp_path / "biaxial_t.txt")
+    assert c.axial[-1] == pytest.approx(-0.01, rel=0.1) and np.all(np.diff(c.axial) < 0)
+    late = c.axial < -0.001           # past the platens' first, gluing steps
+    if cohesive:
+        # the walls still confine it (their servo lags behind the necking at this fast rate)
+        assert np.all(np.abs(c.sigma3[late] / 1e6 - 1) < 0.35), c.sigma3
+        assert c.sigma1[late].min() < -0.3e6, c.sigma1.min()
+    else:
+        assert c.sigma1[late].min() > -0.05e6, c.sigma1.min()
+
+
+def test_bad_mode_stops_before_running(tmp_path):
+    rc, out = run_deck(tmp_path, timeout=60, **dict(TINY, mode="shear"))
+    assert rc == 1 and "biaxial: mode = shear must be compression or tension" in out, out[-2000:]
+
+
 def test_calibrate_tool_runs_3d_sets(tmp_path):
     """saltdem-calibrate biaxial --dim 3: makes a 3D pack (its name says so, settled with the
     stiffness x (rmin + rmax)), passes dim and D to the deck, reads the spheres' count and the

@@ -2,7 +2,9 @@
 spheres between six walls of wall spheres consolidates to sigma3 on all four lateral walls and
 all platens, then shears with the x and z walls held at sigma3 while q = sigma1 - sigma3 rises;
 python/saltdem-calibrate --dim 3 runs it and reads its output; bad input (dim not 2 or 3, a 3D
-depth under 4 rmax) stops with a message before anything runs, and D means nothing in 2D."""
+depth under 4 rmax, a mode other than compression or tension) stops with a message before
+anything runs, and D means nothing in 2D.  The deck's tension mode (either dimension; tried on
+discs, the cheaper sample) pulls a cohesive sample into tension and a cohesionless one not."""
 import json
 import os
 import re

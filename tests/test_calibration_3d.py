@@ -2,8 +2,9 @@
 spheres between six walls of wall spheres consolidates to sigma3 on all four lateral walls and
 all platens, then shears with the x and z walls held at sigma3 while q = sigma1 - sigma3 rises;
 python/saltdem-calibrate --dim 3 runs it and reads its output; bad input (dim not 2 or 3, a 3D
-depth under 4 rmax, a mode other than compression or tension) stops with a message before
-anything runs, and D means nothing in 2D.  The deck's tension mode (either dimension; tried on
+depth under 4 rmax, a mode other than compression or tension, z walls fixed in 2D) stops with a
+message before anything runs, and D means nothing in 2D.  With its z walls fixed the 3D test is a
+plane-strain test.  The deck's tension mode (either dimension; tried on
 discs, the cheaper sample) pulls a cohesive sample into tension and a cohesionless one not."""
 import json
 import os
@@ -145,6 +146,42 @@ def test_tension_mode_pulls_the_sample_apart(tmp_path, cohesive):
 def test_bad_mode_stops_before_running(tmp_path):
     rc, out = run_deck(tmp_path, timeout=60, **dict(TINY, mode="shear"))
     assert rc == 1 and "biaxial: mode = shear must be compression or tension" in out, out[-2000:]
+
+
+def test_plane_strain_holds_the_z_walls(tmp_path):
+    """zwalls fixed: the z walls stay where the consolidation left them while the platens
+    compress, so the sample presses on them: sigma2 (the seventh column) rises with q, where the
+    triaxial test keeps it at sigma3; sigma3 is the x walls' stress, kept within 5 %."""
+    rc, out = run_deck(tmp_path, **dict(TINY, zwalls="fixed"))
+    assert rc == 0, out[-3000:]
+    path = tmp_path / "biaxial_t.txt"
+    assert path.read_text().startswith("# plane-strain test (3D, z walls fixed): sigma3_target 2e6 Pa")
+    a = np.loadtxt(path, comments="#")
+    assert a.shape[1] == 7 and len(a) >= 10
+    c = BiaxialCurve.read(path)
+    q, s2 = c.q, a[:, 6]
+    assert np.max(np.abs(c.sigma3 / SIGMA3 - 1)) < 0.05, c.sigma3
+    assert q[-1] > 0.5 * SIGMA3
+    assert s2[0] == pytest.approx(SIGMA3, rel=0.02)
+    assert s2[-1] > s2[0] + 0.05 * q[-1], (s2[0], s2[-1], q[-1])
+
+
+@pytest.mark.parametrize("var,words", [
+    (dict(zwalls="free"), "biaxial: zwalls = free must be servo or fixed"),
+    (dict(dim=2, zwalls="fixed"), "biaxial: zwalls is a 3D option: a 2D biaxial test is plane strain already"),
+])
+def test_bad_zwalls_stops_before_running(tmp_path, var, words):
+    rc, out = run_deck(tmp_path, timeout=60, **dict(TINY, **var))
+    assert rc == 1 and words in out, out[-2000:]
+    assert "Loop time" not in out
+
+
+def test_calibrate_tool_refuses_plane_strain_in_2d(tmp_path):
+    cmd = [sys.executable, str(TOOL), "-q", "-o", str(tmp_path / "cal"), "--lmp", lmp_path(), "biaxial",
+           "--preset", "ci", "--plane-strain"]
+    p = run_cmd(cmd, capture_output=True, text=True, timeout=60)
+    assert p.returncode != 0
+    assert "--plane-strain is a 3D option (--dim 3)" in p.stdout + p.stderr
 
 
 def test_calibrate_tool_runs_3d_sets(tmp_path):

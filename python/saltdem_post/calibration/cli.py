@@ -264,6 +264,9 @@ def _parser() -> argparse.ArgumentParser:
                          "contact laws x (rmin + rmax) as in the 3D scenes)")
     bx.add_argument("--depth", type=float, metavar="D",
                     help="3D: sample depth along z in m (default: the width W)")
+    bx.add_argument("--plane-strain", action="store_true",
+                    help="3D: hold the z walls while shearing (plane strain along z, as a slab periodic along "
+                         "strike) instead of keeping sigma3 on them")
 
     def add(name, parents, help_):
         s = sub.add_parser(name, parents=parents, help=help_, description=help_)

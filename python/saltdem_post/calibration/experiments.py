@@ -134,6 +134,10 @@ def sample_spec(preset: str, args) -> dict:
     if getattr(args, "dim", 2) == 3:
         # a 3D triaxial test (biaxial.in -var dim 3): a box W x H x D of spheres
         s["dim"], s["D"] = 3, float(getattr(args, "depth", None) or s["W"])
+    if getattr(args, "plane_strain", False):
+        if not is_3d(s):
+            raise ValueError("--plane-strain is a 3D option (--dim 3): a 2D biaxial test is plane strain already")
+        s["zwalls"] = "fixed"
     return s
 
 
@@ -191,7 +195,7 @@ def biaxial_set(ctx: Context, material: Dict[str, float], sample: dict, label: s
                      dist=sample["dist"],
                      sigma3=s3, erate=erate, strain_max=strain_max, S_cover=inertia, tag="t")
             if is_3d(sample):
-                v.update(dim=3, D=sample["D"])
+                v.update(dim=3, D=sample["D"], zwalls=sample.get("zwalls", "servo"))
             jobs.append(Job(decks(ctx) / "biaxial.in", root / f"s{s3 / MPA:g}MPa_seed{seed}", v,
                             f"biaxial {label} sigma3 {s3 / MPA:g} MPa pack {seed}"))
     run_jobs(ctx, jobs)

@@ -32,6 +32,7 @@ import math
 import pathlib
 import subprocess
 
+from saltdem_post import checkout
 from saltdem_post.checkout import lmp_path
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -127,18 +128,30 @@ def slope_case(lmp, work, g, seconds, label, extra=""):
     return dict(g=g, H=H, rho=rho, u_lub=u_lub, series=series)
 
 
-def couette_case(lmp, work, P, V, seconds, label, extra=""):
-    """eta_eff / eta per thermo block: the lid's stress over the interior shear rate."""
-    pack = make_pack(lmp, work, 400, 263)
-    text = run_deck(lmp, "salt_couette.in", work / label,
-                    dict(pack=pack, dt=DT, P=P, V=V, nload=3000, nsteps=int(round(seconds / DT)),
-                         nthermo=5000, eta=ETA, h=H_SALT, extra=extra))
+def couette_case(lmp, work, P, V, seconds, label, extra="", geo=None):
+    """eta_eff / eta per thermo block: the lid's stress over the interior shear rate.  geo: the
+    3D or coarse variant (dim, D, radii, dist, W, H, h, dt; default the 2D full-preset case)."""
+    g = dict(dim=2, D=None, radii=(RMIN, RMAX), dist="paper", W=400, H=263, h=H_SALT, dt=DT)
+    g.update(geo or {})
+    rmax = g["radii"][1]
+    if geo is None:
+        pack = make_pack(lmp, work, 400, 263)
+    else:   # spheres (3D: stiffness x (rmin + rmax)) or other radii: the shared pack maker
+        pack = checkout.make_pack(lmp, work / "packs", g["W"], g["H"], *g["radii"], dist=g["dist"],
+                                  D=g["D"] if g["dim"] == 3 else None)
+    var = dict(pack=pack, dt=g["dt"], P=P, V=V, nload=3000, nsteps=int(round(seconds / g["dt"])),
+               nthermo=5000, eta=ETA, h=g["h"], extra=extra)
+    if (g["radii"], g["dim"]) != ((RMIN, RMAX), 2):
+        var.update(rmin=g["radii"][0], rmax=rmax)
+    if g["dim"] == 3:
+        var.update(dim=3, kn_wall=1e10 * sum(g["radii"]))
+    text = run_deck(lmp, "salt_couette.in", work / label, var)
     m = marker(text, "COUETTE")
     rows = [r for r in thermo(text, "Step") if r["f_avt"] != 0.0]
     blocks = read_chunks(work / label / "couette_profile.txt")
     series = []
     for (step, b), r in zip(blocks[-len(rows):], rows):
-        inner = [x for x in b if m["y0"] + 3 * RMAX < x[1] < r["v_ylid"] - 4 * RMAX and x[2] > 0]
+        inner = [x for x in b if m["y0"] + 3 * rmax < x[1] < r["v_ylid"] - 4 * rmax and x[2] > 0]
         n = len(inner)
         my = sum(x[1] for x in inner) / n
         mv = sum(x[3] for x in inner) / n
@@ -161,7 +174,20 @@ def main():
     ap.add_argument("--time", type=float, default=1500.0)
     ap.add_argument("--extra", default="", help="pair_style saltdem/viscous keywords")
     ap.add_argument("--couette", default="", help="P:V,... (default: P 1e5, 2e6, 2e7 x V 0.01, 0.04, 0.1)")
+    ap.add_argument("--dim", type=int, choices=(2, 3), default=2, help="couette: 3 for a slab of spheres")
+    ap.add_argument("--D", type=float, default=100.0, help="couette, 3D: the slab's depth along z (m)")
+    ap.add_argument("--radii", type=float, nargs=2, default=(RMIN, RMAX), metavar=("RMIN", "RMAX"))
+    ap.add_argument("--dist", choices=("paper", "uniform"), default="uniform",
+                    help="couette with --dim 3 or --radii: the radius distribution")
+    ap.add_argument("--size", type=float, nargs=2, default=(400, 263), metavar=("W", "H"),
+                    help="couette: the pack, bands included (m)")
+    ap.add_argument("--h", type=float, default=H_SALT, help="couette: the salt's smoothing length (m)")
+    ap.add_argument("--dt", type=float, default=DT, help="couette: the time step (s; 3D: inside 0.073 S rho h^2 / eta)")
     args = ap.parse_args()
+    geo = dict(dim=args.dim, D=args.D, radii=tuple(args.radii), dist=args.dist, W=args.size[0], H=args.size[1],
+               h=args.h, dt=args.dt)
+    if geo == dict(dim=2, D=100.0, radii=(RMIN, RMAX), dist="uniform", W=400, H=263, h=H_SALT, dt=DT):
+        geo = None          # the 2D full-preset case, as before
     lids = ([tuple(float(v) for v in c.split(":")) for c in args.couette.split(",")] if args.couette
             else [(P, V) for P in (1e5, 2e6, 2e7) for V in (0.01, 0.04, 0.1)])
     work = pathlib.Path(args.work).resolve()
@@ -177,7 +203,7 @@ def main():
     if "couette" in args.cases:
         for P, V in lids:
             label = f"couette_P{P:g}_V{V:g}"
-            r = couette_case(args.lmp, work, P, V, min(args.time, 420.0), label, args.extra)
+            r = couette_case(args.lmp, work, P, V, min(args.time, 420.0), label, args.extra, geo)
             results[label] = r
             s = r["series"]
             late = [v for t, v in s if t >= 0.5 * s[-1][0]]

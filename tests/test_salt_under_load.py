@@ -182,3 +182,31 @@ def test_pressure_virial_is_isotropic(tmp_path, dim, newton):
         assert abs(p - pv) < 1e-9 * scale, (p, pv, scale)
     for p in off:
         assert abs(p) < 1e-9 * scale, (off, scale)
+
+
+def test_couette_under_a_lid_in_3d(tmp_path):
+    """The lid flow in a slab of spheres (salt_couette.in -var dim 3: the load and the lid's stress
+    per area W x D) at the 3D scenes' quick resolution (radii 25-62.5 m, h 112.6 m, 250 m deep),
+    20 MPa, 0.05 m/s over about 900 m: eta_eff within 10 % of eta (measured 1.025; a stress taken
+    per width instead of per area would be 250 times off)."""
+    rmin, rmax = 25.0, 62.5
+    r = run_lmp(PACK_IN.read_text(), tmp_path, dim=3, W=1600, H=1100, D=250, rmin=rmin, rmax=rmax,
+                dist="uniform", seed=7, kn=5e9 * (rmin + rmax), out="pack.data")
+    check_ok(r)
+    r = run_lmp(COUETTE_IN, tmp_path, dim=3, pack=tmp_path / "pack.data", dt=0.034, P=2e7, V=0.05,
+                nload=3000, nsteps=12353, nthermo=5000, eta=ETA, h=112.6, rmin=rmin, rmax=rmax,
+                kn_wall=1e10 * (rmin + rmax))
+    check_ok(r)
+    m = marker(r.out, "COUETTE")
+    t = r.thermo()
+    prof = last_profile(tmp_path / "couette_profile.txt")
+    ylid = t["v_ylid"][-1]
+    inner = (prof[:, 1] > m["y0"] + 3 * rmax) & (prof[:, 1] < ylid - 4 * rmax) & (prof[:, 2] > 0)
+    rate = np.polyfit(prof[inner, 1], prof[inner, 3], 1)[0]
+    ratio = t["f_avt"][-1] / rate / ETA
+    assert ratio == pytest.approx(1.0, abs=0.10), f"eta_eff / eta = {ratio:.3f} (3D, 20 MPa)"
+
+
+def test_couette_deck_refuses_a_bad_dim(tmp_path):
+    r = run_lmp(COUETTE_IN, tmp_path, timeout=60, dim=4, pack="none", dt=0.01, P=1e6, V=0.01, nsteps=10)
+    assert r.rc == 1 and "salt_couette: dim = 4 must be 2 or 3" in r.out, r.out[-2000:]

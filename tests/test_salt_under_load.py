@@ -19,7 +19,13 @@ pressure isotropic.  These tests fail on the plain gradient:
   isotropy a fully periodic salt at rest with a scattered pressure field (2D, newton off and
            on; 3D): the pair virial is sum_i P_i V_i I to 1e-9 (plain: off-diagonal parts as
            large as the diagonal in 3D)
+  script   bench/validation/salt_under_load.py: which pack its options make, and clear stops for
+           a run or a pack too small to measure
 """
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -210,3 +216,43 @@ def test_couette_under_a_lid_in_3d(tmp_path):
 def test_couette_deck_refuses_a_bad_dim(tmp_path):
     r = run_lmp(COUETTE_IN, tmp_path, timeout=60, dim=4, pack="none", dt=0.01, P=1e6, V=0.01, nsteps=10)
     assert r.rc == 1 and "salt_couette: dim = 4 must be 2 or 3" in r.out, r.out[-2000:]
+
+
+def _script(*args, tmp_path, timeout=300):
+    env = dict(os.environ, PYTHONPATH=f"{ROOT / 'python'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
+    return subprocess.run([sys.executable, str(ROOT / "bench" / "validation" / "salt_under_load.py"),
+                           "--work", str(tmp_path), "--cases", "couette", "--couette", "2e7:0.05", *args],
+                          capture_output=True, text=True, env=env, timeout=timeout)
+
+
+@pytest.mark.parametrize("args,want", [
+    ((), None),
+    (("--dim", "3"), dict(dim=3, D=100.0, radii=(RMIN, RMAX), dist="uniform", W=400, H=263)),
+    (("--h", "30"), dict(dim=2, dist="uniform", h=30.0)),
+    (("--radii", "25", "62.5", "--size", "1600", "1100"), dict(dim=2, radii=(25.0, 62.5), W=1600.0, H=1100.0)),
+])
+def test_script_makes_the_2d_pack_only_without_geometry_options(monkeypatch, tmp_path, args, want):
+    """bench/validation/salt_under_load.py: no geometry option runs the 2D full-preset lid (geo
+    None); --dim 3 or any geometry option the shared pack maker, the others at their defaults."""
+    monkeypatch.syspath_prepend(str(ROOT / "python"))
+    monkeypatch.syspath_prepend(str(ROOT / "bench" / "validation"))
+    import salt_under_load as s
+    got = []
+    monkeypatch.setattr(s, "couette_case", lambda *a: got.append(a[-1]) or {"series": [(1.0, 1.0)]})
+    monkeypatch.setattr("sys.argv", ["salt_under_load.py", "--work", str(tmp_path), "--cases", "couette",
+                                     "--couette", "1e5:0.01", *args])
+    s.main()
+    if want is None:
+        assert got == [None]
+    else:
+        assert {k: got[0][k] for k in want} == want
+
+
+def test_script_says_when_the_run_or_the_pack_is_too_small(tmp_path):
+    """A lid run shorter than the load and one thermo block, and a pack too thin for the band
+    between the wall layers, stop with what to raise (not a division by zero)."""
+    geo = ("--dim", "3", "--D", "250", "--radii", "25", "62.5", "--h", "112.6", "--dt", "0.034")
+    r = _script(*geo, "--size", "800", "600", "--time", "200", tmp_path=tmp_path / "short")
+    assert r.returncode != 0 and "raise --time" in r.stderr, r.stderr[-2000:]
+    r = _script(*geo, "--size", "800", "600", "--time", "420", tmp_path=tmp_path / "thin")
+    assert r.returncode != 0 and "raise the pack's H (--size)" in r.stderr, r.stderr[-2000:]

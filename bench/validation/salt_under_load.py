@@ -148,11 +148,17 @@ def couette_case(lmp, work, P, V, seconds, label, extra="", geo=None):
     text = run_deck(lmp, "salt_couette.in", work / label, var)
     m = marker(text, "COUETTE")
     rows = [r for r in thermo(text, "Step") if r["f_avt"] != 0.0]
+    if not rows:
+        raise SystemExit(f"{label}: no averaged stress in {seconds:g} s: the run needs more than the load "
+                         f"and one thermo block ({(var['nload'] + var['nthermo']) * g['dt']:g} s); raise --time")
     blocks = read_chunks(work / label / "couette_profile.txt")
     series = []
     for (step, b), r in zip(blocks[-len(rows):], rows):
         inner = [x for x in b if m["y0"] + 3 * rmax < x[1] < r["v_ylid"] - 4 * rmax and x[2] > 0]
         n = len(inner)
+        if n < 3:
+            raise SystemExit(f"{label}: fewer than 3 profile bins between y0 + 3 rmax and the lid - 4 rmax "
+                             f"({m['y0'] + 3 * rmax:g} to {r['v_ylid'] - 4 * rmax:g} m): raise the pack's H (--size)")
         my = sum(x[1] for x in inner) / n
         mv = sum(x[3] for x in inner) / n
         rate = (sum((x[1] - my) * (x[3] - mv) for x in inner)
@@ -175,19 +181,26 @@ def main():
     ap.add_argument("--extra", default="", help="pair_style saltdem/viscous keywords")
     ap.add_argument("--couette", default="", help="P:V,... (default: P 1e5, 2e6, 2e7 x V 0.01, 0.04, 0.1)")
     ap.add_argument("--dim", type=int, choices=(2, 3), default=2, help="couette: 3 for a slab of spheres")
-    ap.add_argument("--D", type=float, default=100.0, help="couette, 3D: the slab's depth along z (m)")
-    ap.add_argument("--radii", type=float, nargs=2, default=(RMIN, RMAX), metavar=("RMIN", "RMAX"))
-    ap.add_argument("--dist", choices=("paper", "uniform"), default="uniform",
-                    help="couette with --dim 3 or --radii: the radius distribution")
-    ap.add_argument("--size", type=float, nargs=2, default=(400, 263), metavar=("W", "H"),
-                    help="couette: the pack, bands included (m)")
-    ap.add_argument("--h", type=float, default=H_SALT, help="couette: the salt's smoothing length (m)")
-    ap.add_argument("--dt", type=float, default=DT, help="couette: the time step (s; 3D: inside 0.073 S rho h^2 / eta)")
+    ap.add_argument("--D", type=float, help="couette, 3D: the slab's depth along z (m; default 100)")
+    ap.add_argument("--radii", type=float, nargs=2, metavar=("RMIN", "RMAX"),
+                    help=f"couette: the salt's radii (m; default {RMIN:g} {RMAX:g})")
+    ap.add_argument("--dist", choices=("paper", "uniform"),
+                    help="couette with --dim 3 or --radii: the radius distribution (default uniform)")
+    ap.add_argument("--size", type=float, nargs=2, metavar=("W", "H"),
+                    help="couette: the pack, bands included (m; default 400 263)")
+    ap.add_argument("--h", type=float, help=f"couette: the salt's smoothing length (m; default {H_SALT:g})")
+    ap.add_argument("--dt", type=float,
+                    help=f"couette: the time step (s; default {DT:g}; 3D: inside 0.073 S rho h^2 / eta)")
     args = ap.parse_args()
-    geo = dict(dim=args.dim, D=args.D, radii=tuple(args.radii), dist=args.dist, W=args.size[0], H=args.size[1],
-               h=args.h, dt=args.dt)
-    if geo == dict(dim=2, D=100.0, radii=(RMIN, RMAX), dist="uniform", W=400, H=263, h=H_SALT, dt=DT):
-        geo = None          # the 2D full-preset case, as before
+    # any geometry option (or --dim 3) makes a pack with the shared pack maker; none, the 2D
+    # full-preset pack
+    given = dict(D=args.D, radii=args.radii and tuple(args.radii), dist=args.dist,
+                 W=args.size and args.size[0], H=args.size and args.size[1], h=args.h, dt=args.dt)
+    given = {k: v for k, v in given.items() if v is not None}
+    geo = None
+    if given or args.dim == 3:
+        geo = dict(dim=args.dim, D=100.0, radii=(RMIN, RMAX), dist="uniform", W=400, H=263, h=H_SALT, dt=DT)
+        geo.update(given)
     lids = ([tuple(float(v) for v in c.split(":")) for c in args.couette.split(",")] if args.couette
             else [(P, V) for P in (1e5, 2e6, 2e7) for V in (0.01, 0.04, 0.1)])
     work = pathlib.Path(args.work).resolve()

@@ -3,6 +3,7 @@ into a slab of spheres, periodic in z (examples/expt1.in -var dim 3 -var depth D
 against the pack's geometry and the fault's closed-form motion, serial against two MPI ranks,
 a restart that continues exactly, and 2D-only input refused."""
 import os
+import re
 import sys
 
 import numpy as np
@@ -160,6 +161,26 @@ def test_3d_contact_laws_are_the_2d_ones_per_sphere_diameter(slab):
     assert "contact laws x 350 m of thickness (cover kn 875000000000 N/m, cohesion " in proc.stdout
 
 
+WEIGHT = re.compile(r"scene: weight (\w+): spheres of (\d+) kg/m\^3, the slab (\d+) kg/m\^3 in bulk "
+                    r"\(the 2D section: (\d+)\)")
+
+
+def test_3d_slab_weighs_what_the_section_weighs(slab, tmp_path):
+    """weight section (the default): each sphere has the density rho x phi_2d / phi_3d (0.878 /
+    0.672), so the slab weighs per volume what the 2D section of discs weighs; weight element
+    keeps the paper's element density on each sphere, and the same slab weighs 0.77 of that."""
+    wd, proc = slab
+    m = WEIGHT.search(proc.stdout)
+    assert m and m[1] == "section", proc.stdout[-2000:]
+    assert int(m[2]) == round(2200 * 0.878 / 0.672) and int(m[4]) == round(2200 * 0.878)
+    for p in wd.glob("pack_*.data"):
+        (tmp_path / p.name).write_bytes(p.read_bytes())
+    e = WEIGHT.search(run3d(tmp_path, weight="element").stdout)
+    assert e and e[1] == "element" and int(e[2]) == 2200
+    # the masses the slab was given (its bulk: mass over W x H x depth)
+    assert int(m[3]) / int(e[3]) == pytest.approx(0.878 / 0.672, rel=2e-3)
+
+
 def test_3d_two_ranks_match_serial(slab, tmp_path):
     wd, _ = slab
     for p in wd.glob("pack_*.data"):
@@ -222,6 +243,8 @@ def test_fault_dying_out_along_strike(slab, tmp_path):
     (dict(taper_from=0, taper_to=500), "taper in a box periodic in z"),
     (dict(depth=0), "a 3D scene needs -var depth of at least 4 rmax = 1000 m"),
     (dict(dim=4), "scene: dim 4 must be 2 or 3"),
+    (dict(dim=2, weight="element"), "scene: weight is a 3D option"),
+    (dict(weight="bulk"), "scene: weight bulk must be section or element"),
     (dict(damping=5e4), "frame damping (-var damping) is a 2D option"),
     (dict(sediment="fill"), "requires dimension 2"),
 ])

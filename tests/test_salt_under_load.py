@@ -23,13 +23,12 @@ pressure isotropic.  These tests fail on the plain gradient:
            a run or a pack too small to measure
 """
 import os
-import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from lmprun import ROOT, check_ok, run_lmp
+from lmprun import ROOT, check_ok, run_cmd, run_lmp
 
 SLOPE_IN = (ROOT / "bench" / "validation" / "salt_slope.in").read_text()
 COUETTE_IN = (ROOT / "bench" / "validation" / "salt_couette.in").read_text()
@@ -220,9 +219,9 @@ def test_couette_deck_refuses_a_bad_dim(tmp_path):
 
 def _script(*args, tmp_path, timeout=300):
     env = dict(os.environ, PYTHONPATH=f"{ROOT / 'python'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
-    return subprocess.run([sys.executable, str(ROOT / "bench" / "validation" / "salt_under_load.py"),
-                           "--work", str(tmp_path), "--cases", "couette", "--couette", "2e7:0.05", *args],
-                          capture_output=True, text=True, env=env, timeout=timeout)
+    return run_cmd([sys.executable, str(ROOT / "bench" / "validation" / "salt_under_load.py"),
+                    "--work", str(tmp_path), "--cases", "couette", "--couette", "2e7:0.05", *args],
+                   capture_output=True, text=True, env=env, timeout=timeout)
 
 
 @pytest.mark.parametrize("args,want", [
